@@ -1,0 +1,43 @@
+// JSON output helpers of the lcprelax command line (see cli_common.hpp).
+#include "cli_common.hpp"
+
+#include <lcprelax/sparse/errors.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+
+namespace lcprelax::cli {
+
+void add_json_flag(CLI::App& command, bool& json) {
+  command.add_flag("--json", json, "Print exactly one JSON object on stdout");
+}
+
+Json number_or_null(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  return v;
+}
+
+Json array_or_nulls(const Vector& v) {
+  Json a = Json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(number_or_null(v[i]));
+  return a;
+}
+
+void print_json(const Json& object) {
+  std::cout << object.dump() << '\n' << std::flush;
+}
+
+void write_json_file(const std::string& path, const Json& object) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot open for writing");
+  out << object.dump() << '\n';
+  out.close();
+  if (!out) throw InputError(path + ": write failed");
+}
+
+void require_option(bool ok, const std::string& option, const std::string& requirement) {
+  if (!ok) throw InputError(option + ": " + requirement);
+}
+
+}  // namespace lcprelax::cli

@@ -1,0 +1,65 @@
+#pragma once
+// Shared pieces of the lcprelax command line (DESIGN §4): exit codes, the way a subcommand
+// plugs into main(), and JSON output helpers. A subcommand lives in its own cmd_<name>.cpp
+// and exposes one add_<name>_command(); main.cpp lists them.
+//
+// Error policy: a subcommand's run() returns kExitSuccess or kExitSolveFailed; bad input
+// (malformed or missing file, invalid option value, NaN data) is thrown as
+// lcprelax::InputError and main() turns it into a message on stderr and kExitBadInput,
+// with nothing on stdout.
+#include <lcprelax/sparse/types.hpp>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <functional>
+#include <string>
+
+namespace lcprelax::cli {
+
+/// JSON object whose keys keep insertion order (the order of the DESIGN §4 contract).
+using Json = nlohmann::ordered_json;
+
+enum ExitCode : int {
+  kExitSuccess = 0,      ///< solved
+  kExitSolveFailed = 1,  ///< the solve ran but did not succeed (the status says why)
+  kExitBadInput = 2      ///< bad input: message on stderr, no JSON on stdout
+};
+
+/// A registered subcommand: its CLI11 app (to ask whether it was selected) and the action
+/// that runs it after parsing, returning an ExitCode.
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+/// `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--solution OUT.json] [--json]`.
+Command add_qp_command(CLI::App& parent);
+
+/// Adds the `--json` flag every subcommand accepts.
+void add_json_flag(CLI::App& command, bool& json);
+
+/// A JSON number, or null when v is NaN or ±∞ (JSON has no such numbers).
+Json number_or_null(double v);
+/// A JSON array of numbers (non-finite entries as null).
+Json array_or_nulls(const Vector& v);
+/// Prints `object` as exactly one line on stdout and flushes.
+void print_json(const Json& object);
+/// Writes `object` to `path`; throws InputError if the file cannot be written.
+void write_json_file(const std::string& path, const Json& object);
+/// Throws InputError("<option>: <requirement>") unless ok.
+void require_option(bool ok, const std::string& option, const std::string& requirement);
+
+/// Wall-clock stopwatch started at construction.
+class Stopwatch {
+ public:
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace lcprelax::cli

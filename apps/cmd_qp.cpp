@@ -1,0 +1,108 @@
+// `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--solution OUT.json] [--json]`
+// (DESIGN §4): reads a QPS file, solves it with the interior-point QP and reports status,
+// objective, iterations, residuals, duality gap and the setup + solve wall time. With
+// --solution, OUT.json holds `x`, `y_rows` (one multiplier per constraint row of the file,
+// QpResult::z, since the reader puts every row in G) and `y_bounds` (QpResult::z_bounds),
+// signed as in DESIGN §3 (Px + q + Cᵀy_rows + y_bounds = 0).
+#include "cli_common.hpp"
+
+#include <lcprelax/io/qps_reader.hpp>
+#include <lcprelax/kkt/qp_solver.hpp>
+#include <lcprelax/sparse/errors.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+namespace lcprelax::cli {
+namespace {
+
+struct QpOptions {
+  std::string file;
+  double eps = QpSettings{}.eps_abs;
+  int max_iter = QpSettings{}.max_iter;
+  std::string solution;
+  bool json = false;
+};
+
+QpSettings settings_from(const QpOptions& o) {
+  require_option(std::isfinite(o.eps) && o.eps > 0.0, "--eps", "must be a positive finite number");
+  require_option(o.max_iter >= 1, "--max-iter", "must be at least 1");
+  QpSettings s;
+  s.eps_abs = o.eps;
+  s.max_iter = o.max_iter;
+  const std::string error = s.validation_error();
+  if (!error.empty()) throw InputError("invalid solver settings: " + error);
+  return s;
+}
+
+Json report_json(const QpInfo& info, double seconds) {
+  Json j;
+  j["status"] = to_string(info.status);
+  j["objective"] = number_or_null(info.objective);
+  j["iterations"] = info.iterations;
+  j["primal_residual"] = number_or_null(info.primal_residual);
+  j["dual_residual"] = number_or_null(info.dual_residual);
+  j["duality_gap"] = number_or_null(info.duality_gap);
+  j["seconds"] = number_or_null(seconds);
+  return j;
+}
+
+Json solution_json(const QpResult& result) {
+  Json j;
+  j["x"] = array_or_nulls(result.x);
+  j["y_rows"] = array_or_nulls(result.z);
+  j["y_bounds"] = array_or_nulls(result.z_bounds);
+  return j;
+}
+
+void print_report(const io::QpsModel& model, const QpInfo& info, double seconds) {
+  const QpProblem& p = model.problem;
+  std::ostream& out = std::cout;
+  out << "problem     " << (model.name.empty() ? "(unnamed)" : model.name) << ": " << p.num_variables()
+      << " variables, " << p.num_inequalities() << " rows, nnz(P) = " << p.P.nonZeros()
+      << ", nnz(G) = " << p.G.nonZeros() << '\n';
+  out << "status      " << to_string(info.status) << '\n';
+  if (info.status != QpStatus::solved && !info.message.empty()) out << "message     " << info.message << '\n';
+  out << "objective   " << std::setprecision(12) << info.objective << '\n';
+  out << "iterations  " << info.iterations << '\n';
+  out << std::setprecision(3) << "residuals   primal " << info.primal_residual << ", dual " << info.dual_residual
+      << ", gap " << info.duality_gap << '\n';
+  out << "seconds     " << seconds << " (setup + solve)\n";
+}
+
+int run_qp(const QpOptions& o) {
+  const QpSettings settings = settings_from(o);
+  const io::QpsModel model = io::read_qps(o.file);
+
+  QpSolver solver(settings);
+  const Stopwatch watch;
+  solver.setup(model.problem);  // rejects invalid data (NaN, crossed bounds) with InputError
+  const QpResult& result = solver.solve();
+  const double seconds = watch.seconds();
+
+  if (!o.solution.empty()) write_json_file(o.solution, solution_json(result));
+  if (o.json) {
+    print_json(report_json(result.info, seconds));
+  } else {
+    print_report(model, result.info, seconds);
+  }
+  return result.info.status == QpStatus::solved ? kExitSuccess : kExitSolveFailed;
+}
+
+}  // namespace
+
+Command add_qp_command(CLI::App& parent) {
+  auto options = std::make_shared<QpOptions>();
+  CLI::App* qp = parent.add_subcommand("qp", "Solve a convex QP given as a QPS file (Maros–Meszaros format)");
+  qp->add_option("file", options->file, "QPS file")->required();
+  qp->add_option("--eps", options->eps, "Absolute tolerance on residuals and duality gap (QpSettings::eps_abs)")
+      ->capture_default_str();
+  qp->add_option("--max-iter", options->max_iter, "Interior-point iteration limit")->capture_default_str();
+  qp->add_option("--solution", options->solution, "Write x, y_rows and y_bounds to this JSON file");
+  add_json_flag(*qp, options->json);
+  return Command{qp, [options] { return run_qp(*options); }};
+}
+
+}  // namespace lcprelax::cli

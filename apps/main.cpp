@@ -1,0 +1,41 @@
+// lcprelax command line (DESIGN §4). Each subcommand registers itself through an
+// add_<name>_command() declared in cli_common.hpp; main() parses, runs the selected one and
+// maps failures to exit codes: 0 solved, 1 solve failed, 2 bad input (message on stderr).
+#include "cli_common.hpp"
+
+#include <lcprelax/sparse/errors.hpp>
+
+#include <exception>
+#include <iostream>
+#include <vector>
+
+int main(int argc, char** argv) {
+  using namespace lcprelax::cli;
+  CLI::App app{"lcprelax: sparse QP / LCP solvers for many-contact systems"};
+  app.require_subcommand(1);
+  const std::vector<Command> commands = {
+      add_qp_command(app),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help (stdout) or the error (stderr)
+    return code == 0 ? kExitSuccess : kExitBadInput;
+  }
+
+  for (const Command& command : commands) {
+    if (!command.app->parsed()) continue;
+    try {
+      return command.run();
+    } catch (const lcprelax::InputError& e) {
+      std::cerr << "lcprelax " << command.app->get_name() << ": " << e.what() << '\n';
+      return kExitBadInput;
+    } catch (const std::exception& e) {
+      std::cerr << "lcprelax " << command.app->get_name() << ": internal error: " << e.what() << '\n';
+      return kExitSolveFailed;
+    }
+  }
+  std::cerr << "lcprelax: no subcommand given\n";
+  return kExitBadInput;
+}

@@ -1,0 +1,52 @@
+#pragma once
+// Settings of the interior-point QP solver, with documented defaults.
+//
+// Termination (all infinity norms, on the UNSCALED problem, as qpbenchmark measures):
+//   primal residual  max(‖Ax − b‖, ‖dist(Gx, [l,u])‖, ‖dist(x, [xl,xu])‖) ≤ eps_abs + eps_rel·scale_p
+//   dual residual    ‖Px + q + Aᵀy + Gᵀz + z_bounds‖ ≤ eps_abs + eps_rel·scale_d
+//   duality gap      |xᵀPx + qᵀx + bᵀy + Σ support terms of z and z_bounds| ≤ eps_abs + eps_rel·scale_g
+// where scale_p, scale_d, scale_g are the largest norms of the terms in each expression.
+#include <limits>
+#include <string>
+
+namespace lcprelax {
+
+/// Which linear system is factorized at each iteration.
+enum class KktForm {
+  automatic,  ///< the form whose symbolic analysis predicts the smaller nnz(L)
+  full,       ///< quasi-definite [P+Σx+ρI, Aᵀ, Gᵀ; A, −δI, 0; G, 0, −W] by CHOLMOD LDLᵀ
+  eliminated  ///< SPD P+Σx+ρI + Gᵀ W⁻¹ G by CHOLMOD supernodal LLᵀ (only without equalities)
+};
+
+constexpr const char* to_string(KktForm f) {
+  switch (f) {
+    case KktForm::automatic: return "automatic";
+    case KktForm::full: return "full";
+    case KktForm::eliminated: return "eliminated";
+  }
+  return "unknown";
+}
+
+struct QpSettings {
+  double eps_abs = 1e-9;          ///< absolute tolerance on residuals and gap
+  double eps_rel = 0.0;           ///< relative tolerance (see header comment)
+  double eps_infeasible = 1e-9;   ///< tolerance of infeasibility certificates
+  int max_iter = 200;             ///< interior-point iterations
+  double time_limit = std::numeric_limits<double>::infinity();  ///< seconds, solve() only
+  double reg_primal = 1e-9;       ///< static primal regularization ρ (scaled problem)
+  double reg_dual = 1e-9;         ///< static dual regularization δ (scaled problem)
+  double reg_max = 1e-2;          ///< largest regularization tried after failed factorizations
+  int max_refinement = 10;        ///< iterative refinement steps against the unregularized KKT
+  int ruiz_iterations = 10;       ///< Ruiz equilibration passes (0 disables scaling)
+  double step_fraction = 0.995;   ///< fraction to the boundary
+  KktForm kkt_form = KktForm::automatic;
+  bool verbose = false;           ///< one line per iteration on stderr
+  /// When the iteration fails (stalls, diverges, hits max_iter), solve the auxiliary LPs of
+  /// qp_infeasibility_lp.cpp that decide primal or dual infeasibility with a certificate.
+  bool infeasibility_lps = true;
+
+  /// Empty when valid, else a message naming the first bad field.
+  std::string validation_error() const;
+};
+
+}  // namespace lcprelax

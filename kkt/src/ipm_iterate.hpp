@@ -1,0 +1,59 @@
+#pragma once
+// Interior-point iterate and its Newton step on a StandardForm (internal).
+//
+// Every finite side of a row of G̃ or of a variable bound is a one-sided constraint on a
+// quantity v (v = G̃x̃ for rows, v = x̃ for bounds) with slack s > 0 and multiplier z > 0:
+//     lower:  v − s = l          upper:  v + s = u
+// The signed multiplier of a quantity is ζ = z_upper − z_lower (DESIGN §3 convention).
+// Residuals: r = v − s − l (lower), r = v + s − u (upper), r_c = s∘z − σμ (+ corrector).
+// Eliminating ds and dz from the Newton equations gives dζ = D dv + ξ with
+//     D = Σ z/s,   ξ = Σ_upper (−r_c + z r)/s + Σ_lower (r_c + z r)/s,
+// and then  ds = dv + r (lower), ds = −dv − r (upper), dz = (−r_c − z∘ds)/s.
+#include "standard_form.hpp"
+
+#include <vector>
+
+namespace lcprelax::detail {
+
+struct Side {
+  std::vector<Index> idx;  ///< quantity index of each constraint
+  Vector bound;            ///< l or u of each constraint
+  bool upper = false;
+  Vector s, z;             ///< slack and multiplier (> 0)
+  Vector r, rc;            ///< primal residual and complementarity right-hand side
+  Vector ds, dz;           ///< step
+  Index size() const { return static_cast<Index>(idx.size()); }
+};
+
+struct Iterate {
+  Vector x, y;
+  Side g_lower, g_upper, b_lower, b_upper;
+  Vector vg;  ///< G̃x̃
+  std::vector<Index> g_lower_pos, g_upper_pos;  ///< per row: position in g_lower/g_upper or −1
+
+  /// Builds the four sides from the finite bounds of f (slacks and multipliers unset).
+  void init_sides(const StandardForm& f);
+  Index num_constraints() const;
+  /// Σ s∘z / N (0 without inequality constraints).
+  double mu() const;
+  /// r for all sides from the current x (updates vg).
+  void compute_side_residuals(const StandardForm& f);
+  /// Barrier terms D for rows (Dg, size mg) and bounds (Db, size n).
+  void barrier_terms(Index mg, Index n, Vector& Dg, Vector& Db) const;
+  /// ξ for rows and bounds from the current r and rc.
+  void xi_terms(Index mg, Index n, Vector& xig, Vector& xib) const;
+  /// Recovers ds, dz of every side from dx, dvg = G̃ dx and the solved row step dζ. The
+  /// row sides are then corrected so that dz_u − dz_l equals dζ exactly: rebuilding dζ
+  /// as D·dv + ξ loses all accuracy at active rows, where D = z/s → ∞ amplifies the
+  /// roundoff of dv; the correction goes to the side with the larger z/s, whose ds is
+  /// then taken from its complementarity equation s·dz + z·ds = −r_c.
+  void recover_side_steps(const Vector& dx, const Vector& dvg, const Vector& dzeta);
+  /// Largest α ≤ 1 keeping s + α ds ≥ 0 and z + α dz ≥ 0.
+  double max_step() const;
+  /// Signed multipliers ζ of rows (mg) and bounds (n).
+  void signed_multipliers(Index mg, Index n, Vector& zg, Vector& zb) const;
+  std::vector<Side*> sides() { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
+  std::vector<const Side*> sides() const { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
+};
+
+}  // namespace lcprelax::detail

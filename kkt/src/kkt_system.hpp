@@ -1,0 +1,67 @@
+#pragma once
+// The regularized Newton/KKT system of the interior point (internal).
+//
+// Unknowns (dx, dy, dζ) for the n variables, me equality rows and mg inequality rows of a
+// StandardForm. The unregularized operator is
+//     K0 = [P + diag(Db)   Eᵀ   Gᵀ        ]
+//          [E              0    0         ]
+//          [G              0   −diag(1/Dg)]
+// with Db ≥ 0 (bound barrier terms) and Dg > 0 (row barrier terms: Dg = z_u/s_u + z_l/s_l).
+// The factorized matrix adds +ρ on the first block and −δ on the other two. Full form:
+// the upper triangle of that quasi-definite matrix, CHOLMOD LDLᵀ. Eliminated form (only
+// when me = 0): H = P + Db + ρI + Gᵀ diag(Dg/(1 + δ Dg)) G by CHOLMOD supernodal LLᵀ.
+// The data → K index maps are built once, so refilling values is a scatter.
+// Solves are refined against K0 (iterative refinement; stop when the residual improves
+// less than 5× or reaches roundoff).
+#include "standard_form.hpp"
+
+#include <lcprelax/kkt/qp_settings.hpp>
+#include <lcprelax/sparse/factorization.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace lcprelax::detail {
+
+class KktSystem {
+ public:
+  /// Chooses the form (automatic: smaller predicted nnz(L)), builds pattern, maps and the
+  /// symbolic analysis. Returns false with a message if the analysis fails.
+  bool setup(const StandardForm& f, KktForm requested, std::string& message);
+  /// Fills values for (Db, Dg, ρ, δ) and factorizes numerically.
+  sparse::FactorResult factorize(const StandardForm& f, const Vector& Db, const Vector& Dg, double rho,
+                                 double delta);
+  /// Solves K0 (dx, dy, dz) = (rx, ry, rz) with the current factorization and refinement.
+  /// Returns the number of refinement steps taken.
+  int solve(const StandardForm& f, const Vector& rx, const Vector& ry, const Vector& rz, Vector& dx, Vector& dy,
+            Vector& dz, int max_refinement) const;
+
+  KktForm form() const { return form_; }
+  long factor_nnz() const;
+  int numeric_factorizations() const;
+
+ private:
+  void build_full_pattern(const StandardForm& f);
+  bool build_eliminated_pattern(const StandardForm& f);
+  void apply_k0(const StandardForm& f, const Vector& dx, const Vector& dy, const Vector& dz, Vector& ox, Vector& oy,
+                Vector& oz) const;
+  void approximate_solve(const StandardForm& f, const Vector& rx, const Vector& ry, const Vector& rz, Vector& dx,
+                         Vector& dy, Vector& dz) const;
+
+  KktForm form_ = KktForm::full;
+  SparseMatrix K_;                       // upper triangle of the factorized matrix
+  std::unique_ptr<sparse::Factorization> factor_;
+  std::vector<Index> p_pos_;             // P entry k (off-diagonal) → K value slot, −1 for diagonal
+  std::vector<Index> diag_pos_;          // diagonal slot of every K column
+  std::vector<Index> e_pos_;             // Eᵀ entry k (CSC of Et) → K slot (full form)
+  std::vector<Index> g_pos_;             // Gᵀ entry k (CSC of Gt) → K slot (full form)
+  struct ProductTerm {                   // eliminated form: H[pos] += w_row * Gt[a] * Gt[b]
+    Index pos, row, a, b;
+  };
+  std::vector<ProductTerm> products_;
+  Vector Db_, Dg_;                       // values of the last factorization
+  double rho_ = 0.0, delta_ = 0.0;
+  mutable Vector work_;                  // scratch for solves
+};
+
+}  // namespace lcprelax::detail

@@ -1,0 +1,166 @@
+// The Mehrotra predictor-corrector iteration of QpSolver (see qp_solver.hpp).
+#include "qp_infeasibility_lp.hpp"
+#include "qp_solver_impl.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace lcprelax {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+bool within(const detail::Residuals& r, const QpSettings& s, double factor) {
+  return r.primal <= factor * (s.eps_abs + s.eps_rel * r.scale_p) &&
+         r.dual <= factor * (s.eps_abs + s.eps_rel * r.scale_d) &&
+         r.gap <= factor * (s.eps_abs + s.eps_rel * r.scale_g);
+}
+
+constexpr double kInaccurateFactor = 1e3;  // stalled solves within 1e3·eps: solved_inaccurate
+constexpr int kFirstInfeasibilityCheck = 3;
+constexpr double kDivergence = 1e13;  // scaled iterate norm taken as divergence
+
+void fill_residuals(QpInfo& info, const detail::Residuals& r) {
+  info.primal_residual = r.primal;
+  info.dual_residual = r.dual;
+  info.duality_gap = r.gap;
+}
+
+}  // namespace
+
+void QpSolver::Impl::run(QpInfo& info) {
+  const auto t0 = Clock::now();
+  const detail::StandardForm& f = form;
+  rho = settings.reg_primal;
+  delta = settings.reg_dual;
+  if (!initial_point(info)) {
+    info.status = QpStatus::numerical_error;
+    return;
+  }
+  Vector rd, rp, dx, dy, dz, zg, zb, last_dx, last_dy;
+  bool have_step = false;
+  int tiny_steps = 0;
+  detail::Residuals res;
+  QpResult best;
+  for (info.iterations = 0;; ++info.iterations) {
+    // Residuals of the current iterate (scaled) and termination tests (unscaled).
+    it.compute_side_residuals(f);
+    it.signed_multipliers(f.mg, f.n, zg, zb);
+    rd = f.P.selfadjointView<Eigen::Upper>() * it.x + f.q + zb;
+    if (f.me) rd.noalias() += f.Et * it.y;
+    if (f.mg) rd.noalias() += f.Gt * zg;
+    rp = f.E * it.x - f.be;
+    detail::unscale_solution(f, problem, it, result);
+    res = detail::compute_residuals(problem, result);
+    fill_residuals(info, res);
+    const double mu = it.mu();
+    if (settings.verbose)
+      std::fprintf(stderr, "ipm %3d  pres %.2e  dres %.2e  gap %.2e  mu %.2e  reg %.0e\n", info.iterations,
+                   res.primal, res.dual, res.gap, mu, rho);
+    if (within(res, settings, 1.0)) {
+      info.status = QpStatus::solved;
+      return;
+    }
+    if (have_step && info.iterations >= kFirstInfeasibilityCheck) {
+      QpResult cert = result;
+      if (detail::primal_infeasibility_certificate(f, problem, it.y, it, false, settings.eps_infeasible, cert) ||
+          detail::primal_infeasibility_certificate(f, problem, last_dy, it, true, settings.eps_infeasible, cert)) {
+        result = cert;
+        info.status = QpStatus::primal_infeasible;
+        return;
+      }
+      if (detail::dual_infeasibility_certificate(f, last_dx, settings.eps_infeasible, cert) ||
+          detail::dual_infeasibility_certificate(f, it.x, settings.eps_infeasible, cert)) {
+        result = cert;
+        info.status = QpStatus::dual_infeasible;
+        return;
+      }
+    }
+    auto give_up = [&](QpStatus status, const char* why) {
+      info.status = within(res, settings, kInaccurateFactor) ? QpStatus::solved_inaccurate : status;
+      if (info.message.empty()) info.message = why;
+    };
+    if (info.iterations >= settings.max_iter) return give_up(QpStatus::max_iterations, "iteration limit reached");
+    if (seconds_since(t0) > settings.time_limit) return give_up(QpStatus::time_limit, "time limit reached");
+    if (tiny_steps >= 5) return give_up(QpStatus::numerical_error, "no progress: step lengths below 1e-10");
+    double iterate_norm = std::max(it.x.size() ? it.x.lpNorm<Eigen::Infinity>() : 0.0,
+                                   it.y.size() ? it.y.lpNorm<Eigen::Infinity>() : 0.0);
+    for (const detail::Side* s : it.sides())
+      if (s->size()) iterate_norm = std::max(iterate_norm, s->z.lpNorm<Eigen::Infinity>());
+    if (!(iterate_norm < kDivergence)) return give_up(QpStatus::numerical_error, "iterates diverge");
+
+    // Factorize the Newton system at this iterate.
+    it.barrier_terms(f.mg, f.n, Dg, Db);
+    if (!factorize(info)) return give_up(QpStatus::numerical_error, "factorization failed");
+
+    // Predictor (affine scaling) direction.
+    for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
+    info.refinement_steps += newton_step(rd, rp, dx, dy, dz);
+    const double a_aff = it.max_step();
+    double mu_aff = 0.0;
+    for (const detail::Side* s : it.sides())
+      mu_aff += (s->s + a_aff * s->ds).dot(s->z + a_aff * s->dz);
+    const Index N = it.num_constraints();
+    const double sigma = N > 0 && mu > 0 ? std::pow(std::clamp(mu_aff / N / mu, 0.0, 1.0), 3) : 0.0;
+
+    // Corrector: s∘z + ds_aff∘dz_aff − σμ.
+    for (detail::Side* s : it.sides())
+      s->rc = (s->s.cwiseProduct(s->z) + s->ds.cwiseProduct(s->dz)).array() - sigma * mu;
+    info.refinement_steps += newton_step(rd, rp, dx, dy, dz);
+    const double amax = it.max_step();
+    const double alpha = std::min(1.0, settings.step_fraction * amax);
+    tiny_steps = alpha < 1e-10 ? tiny_steps + 1 : 0;
+    if (settings.verbose) std::fprintf(stderr, "     alpha %.3e  sigma %.2e  a_aff %.3e\n", alpha, sigma, a_aff);
+
+    it.x += alpha * dx;
+    if (f.me) it.y += alpha * dy;
+    for (detail::Side* s : it.sides()) {
+      s->s += alpha * s->ds;
+      s->z += alpha * s->dz;
+    }
+    last_dx = dx;
+    last_dy = dy;
+    have_step = true;
+  }
+}
+
+const QpResult& QpSolver::solve() {
+  Impl& m = *impl_;
+  if (!m.is_setup) throw std::logic_error("QpSolver::solve before setup");
+  const auto t0 = Clock::now();
+  m.result = QpResult{};
+  QpInfo info;
+  info.message.clear();
+  info.kkt_form = m.kkt.form();
+  m.run(info);
+  if (m.settings.infeasibility_lps &&
+      (info.status == QpStatus::max_iterations || info.status == QpStatus::numerical_error)) {
+    QpResult cert = m.result;
+    if (detail::prove_primal_infeasible(m.problem, m.settings, cert)) {
+      m.result = cert;
+      info.status = QpStatus::primal_infeasible;
+      info.message = "primal infeasible (certificate from the auxiliary LP) after: " + info.message;
+    } else if (detail::prove_dual_infeasible(m.problem, m.settings, cert)) {
+      m.result = cert;
+      info.status = QpStatus::dual_infeasible;
+      info.message = "dual infeasible (certificate from the auxiliary LP) after: " + info.message;
+    }
+  }
+  info.kkt_factor_nnz = m.kkt.factor_nnz();
+  info.reg_primal = m.rho;
+  info.reg_dual = m.delta;
+  if (m.result.x.size() == m.problem.num_variables() && info.status != QpStatus::dual_infeasible)
+    info.objective = m.problem.objective(m.result.x);
+  info.setup_seconds = m.setup_seconds;
+  info.solve_seconds = seconds_since(t0);
+  if (info.message.empty()) info.message = to_string(info.status);
+  m.result.info = info;
+  m.has_warm_start = false;
+  return m.result;
+}
+
+}  // namespace lcprelax

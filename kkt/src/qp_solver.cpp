@@ -1,0 +1,173 @@
+// QpSolver: lifecycle and the Mehrotra predictor-corrector loop (method in qp_solver.hpp,
+// iterate equations in ipm_iterate.hpp).
+#include "qp_solver_impl.hpp"
+
+#include <lcprelax/sparse/errors.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace lcprelax {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+QpSolver::QpSolver(QpSettings settings) : impl_(std::make_unique<Impl>()) { set_settings(settings); }
+QpSolver::~QpSolver() = default;
+QpSolver::QpSolver(QpSolver&&) noexcept = default;
+QpSolver& QpSolver::operator=(QpSolver&&) noexcept = default;
+
+void QpSolver::set_settings(const QpSettings& settings) {
+  const std::string e = settings.validation_error();
+  if (!e.empty()) throw InputError("invalid QpSettings: " + e);
+  impl_->settings = settings;
+}
+
+const QpSettings& QpSolver::settings() const { return impl_->settings; }
+const QpResult& QpSolver::result() const { return impl_->result; }
+
+void QpSolver::Impl::build(const QpProblem& p) {
+  problem = p;
+  problem.P.makeCompressed();
+  problem.A.makeCompressed();
+  problem.G.makeCompressed();
+  form = detail::build_standard_form(problem, settings.ruiz_iterations);
+}
+
+void QpSolver::setup(const QpProblem& problem) {
+  const auto t0 = Clock::now();
+  problem.validate();
+  impl_->build(problem);
+  std::string message;
+  if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, message))
+    throw std::runtime_error("QpSolver::setup: " + message);
+  impl_->is_setup = true;
+  impl_->has_warm_start = false;
+  impl_->result = QpResult{};
+  impl_->setup_seconds = seconds_since(t0);
+}
+
+void QpSolver::update(const QpProblem& problem) {
+  if (!impl_->is_setup) throw std::logic_error("QpSolver::update before setup");
+  if (!problem.same_pattern(impl_->problem))
+    throw InputError("QpSolver::update: the sparsity pattern or sizes differ from setup(); call setup()");
+  problem.validate();
+  const auto t0 = Clock::now();
+  const std::vector<char> old_signature = impl_->form.signature;
+  impl_->build(problem);
+  if (impl_->form.signature != old_signature) {  // rows changed between equality/one/two-sided
+    std::string message;
+    if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, message))
+      throw std::runtime_error("QpSolver::update: " + message);
+  }
+  impl_->result = QpResult{};
+  impl_->setup_seconds = seconds_since(t0);
+}
+
+void QpSolver::warm_start(const Vector& x, const Vector& y, const Vector& z, const Vector& z_bounds) {
+  const QpProblem& p = impl_->problem;
+  if (x.size() != p.num_variables() || y.size() != p.num_equalities() || z.size() != p.num_inequalities() ||
+      z_bounds.size() != p.num_variables())
+    throw InputError("QpSolver::warm_start: sizes do not match the problem");
+  if (!x.allFinite() || !y.allFinite() || !z.allFinite() || !z_bounds.allFinite())
+    throw InputError("QpSolver::warm_start: non-finite value");
+  impl_->warm.x = x;
+  impl_->warm.y = y;
+  impl_->warm.z = z;
+  impl_->warm.z_bounds = z_bounds;
+  impl_->has_warm_start = true;
+}
+
+bool QpSolver::Impl::factorize(QpInfo& info) {
+  const auto t0 = Clock::now();
+  for (;;) {
+    const sparse::FactorResult r = kkt.factorize(form, Db, Dg, rho, delta);
+    ++info.factorizations;
+    if (r.ok()) break;
+    if (rho >= settings.reg_max) {
+      info.message = "KKT factorization failed at the largest regularization: " + r.message;
+      info.factor_seconds += seconds_since(t0);
+      return false;
+    }
+    rho = std::min(rho * 10.0, settings.reg_max);
+    delta = std::min(delta * 10.0, settings.reg_max);
+    ++info.factor_retries;
+  }
+  info.factor_seconds += seconds_since(t0);
+  return true;
+}
+
+int QpSolver::Impl::newton_step(const Vector& rd, const Vector& rp, Vector& dx, Vector& dy, Vector& dz) {
+  Vector xig, xib;
+  it.xi_terms(form.mg, form.n, xig, xib);
+  const Vector rx = -rd - xib;
+  const Vector ry = -rp;
+  const Vector rz = (-xig.array() / Dg.array()).matrix();
+  const int steps = kkt.solve(form, rx, ry, rz, dx, dy, dz, settings.max_refinement);
+  const Vector dvg = form.G * dx;
+  it.recover_side_steps(dx, dvg, dz);
+  return steps;
+}
+
+bool QpSolver::Impl::initial_point(QpInfo& info) {
+  it.init_sides(form);
+  if (has_warm_start) {
+    it.x = warm.x.cwiseQuotient(form.Dx);
+    it.y = Vector::Zero(form.me);
+    for (Index k = 0; k < form.me; ++k) {
+      const Index s = form.eq_index[k];
+      const double v = form.eq_source[k] == detail::EqSource::a_row   ? warm.y(s)
+                       : form.eq_source[k] == detail::EqSource::g_row ? warm.z(s)
+                                                                      : warm.z_bounds(s);
+      it.y(k) = form.c * v / form.Ee(k);
+    }
+    Vector zg(form.mg);
+    for (Index k = 0; k < form.mg; ++k) zg(k) = form.c * warm.z(form.g_index[k]) / form.Eg(k);
+    const Vector zb = form.c * warm.z_bounds.cwiseProduct(form.Dx);
+    it.compute_side_residuals(form);
+    for (detail::Side* s : it.sides()) {
+      const bool rows = (s == &it.g_lower || s == &it.g_upper);
+      for (Index k = 0; k < s->size(); ++k) {
+        const Index q = s->idx[k];
+        const double v = rows ? it.vg(q) : it.x(q);
+        const double zz = rows ? zg(q) : zb(q);
+        s->s(k) = std::max(s->upper ? s->bound(k) - v : v - s->bound(k), 1e-2);
+        s->z(k) = std::max(s->upper ? zz : -zz, 1e-2);
+      }
+    }
+    return true;
+  }
+  // Cold start: minimize ½x̃ᵀP̃x̃ + q̃ᵀx̃ + ½‖x̃ − x_c‖²_Db + ½‖G̃x̃ − g_c‖² s.t. Ẽx̃ = b̃, with
+  // x_c, g_c the projections of 0 on the bounds, then slacks pushed to at least 1.
+  Db = Vector::Zero(form.n);
+  for (Index j = 0; j < form.n; ++j)
+    if (std::isfinite(form.xl(j)) || std::isfinite(form.xu(j))) Db(j) = 1.0;
+  Dg = Vector::Ones(form.mg);
+  if (!factorize(info)) return false;
+  const Vector xc = Vector::Zero(form.n).cwiseMax(form.xl).cwiseMin(form.xu);
+  const Vector gc = Vector::Zero(form.mg).cwiseMax(form.gl).cwiseMin(form.gu);
+  Vector dz;
+  info.refinement_steps +=
+      kkt.solve(form, -form.q + Db.cwiseProduct(xc), form.be, gc, it.x, it.y, dz, settings.max_refinement);
+  if (form.me == 0) it.y = Vector::Zero(0);
+  it.compute_side_residuals(form);
+  for (detail::Side* s : it.sides()) {
+    const bool rows = (s == &it.g_lower || s == &it.g_upper);
+    for (Index k = 0; k < s->size(); ++k) {
+      const double v = rows ? it.vg(s->idx[k]) : it.x(s->idx[k]);
+      s->s(k) = std::max(s->upper ? s->bound(k) - v : v - s->bound(k), 1.0);
+      s->z(k) = 1.0;
+    }
+  }
+  return true;
+}
+
+int QpSolver::numeric_factorizations() const { return impl_->kkt.numeric_factorizations(); }
+
+}  // namespace lcprelax

@@ -1,0 +1,53 @@
+#pragma once
+// QpSolver's private state, shared by the solver's translation units (internal).
+#include "ipm_iterate.hpp"
+#include "kkt_system.hpp"
+#include "standard_form.hpp"
+
+#include <lcprelax/kkt/qp_solver.hpp>
+
+namespace lcprelax {
+
+namespace detail {
+
+/// Unscaled residuals of a candidate solution (see QpSettings for the definitions).
+struct Residuals {
+  double primal = 0, dual = 0, gap = 0;
+  double scale_p = 0, scale_d = 0, scale_g = 0;
+};
+
+/// Maps the scaled iterate back to the user's variables and multipliers.
+void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r);
+Residuals compute_residuals(const QpProblem& p, const QpResult& r);
+
+/// Infeasibility certificates on a candidate direction (scaled space); on success the
+/// certificate is written into r (unscaled, ∞-norm 1) and true is returned.
+bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p, const Vector& y, const Iterate& it,
+                                      bool use_steps, double eps, QpResult& r);
+bool dual_infeasibility_certificate(const StandardForm& f, const Vector& d, double eps, QpResult& r);
+
+}  // namespace detail
+
+struct QpSolver::Impl {
+  QpSettings settings;
+  QpProblem problem;  ///< the user's data (unscaled)
+  detail::StandardForm form;
+  detail::KktSystem kkt;
+  detail::Iterate it;
+  QpResult result;
+  bool is_setup = false;
+  bool has_warm_start = false;
+  QpResult warm;                ///< warm-start point (unscaled)
+  Vector Db, Dg;                ///< barrier terms of the last factorization
+  double rho = 0, delta = 0;    ///< regularization of the last factorization
+  double setup_seconds = 0;
+
+  void build(const QpProblem& p);
+  bool factorize(QpInfo& info);
+  /// Newton step for the current rd, rp and side rc; returns refinement steps.
+  int newton_step(const Vector& rd, const Vector& rp, Vector& dx, Vector& dy, Vector& dz);
+  bool initial_point(QpInfo& info);  ///< false if the factorization failed
+  void run(QpInfo& info);
+};
+
+}  // namespace lcprelax

@@ -1,0 +1,33 @@
+#pragma once
+// CHOLMOD supernodal LLᵀ for symmetric positive definite matrices. A pivot ≤ 0 gives
+// FactorStatus::not_positive_definite with the failing column in FactorResult::pivot.
+#include <lcprelax/sparse/factorization.hpp>
+
+#include <memory>
+
+namespace lcprelax::sparse {
+
+class CholmodLlt final : public Factorization {
+ public:
+  CholmodLlt();
+  ~CholmodLlt() override;
+  CholmodLlt(const CholmodLlt&) = delete;
+  CholmodLlt& operator=(const CholmodLlt&) = delete;
+  CholmodLlt(CholmodLlt&&) noexcept;
+  CholmodLlt& operator=(CholmodLlt&&) noexcept;
+
+  FactorResult analyze(const SparseMatrix& A) override;
+  FactorResult factorize(const SparseMatrix& A) override;
+  FactorResult solve(Eigen::Ref<DenseMatrix> B) const override;
+  long factor_nnz() const override;
+  Index rows() const override;
+  const char* name() const override { return "cholmod_llt"; }
+  /// See CholmodLdlt::clone_analysis().
+  CholmodLlt clone_analysis() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lcprelax::sparse

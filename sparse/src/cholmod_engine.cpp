@@ -1,0 +1,234 @@
+// CHOLMOD engine: views a compressed lcprelax::SparseMatrix as a cholmod_sparse (upper
+// triangle, no copy), analyses once with AMD, refactorizes numerically, solves in place,
+// and turns every CHOLMOD outcome into a FactorResult (CHOLMOD never prints or aborts).
+#include "cholmod_engine.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace lcprelax::sparse::detail {
+namespace {
+
+// CHOLMOD reports errors through Common->status; this handler keeps it quiet.
+void silent_error_handler(int /*status*/, const char* /*file*/, int /*line*/,
+                          const char* /*message*/) {}
+
+FactorResult from_common(const cholmod_common& c, const char* where) {
+  const std::string what = std::string(where) + " failed (CHOLMOD status " +
+                           std::to_string(c.status) + ")";
+  switch (c.status) {
+    case CHOLMOD_OUT_OF_MEMORY:
+    case CHOLMOD_TOO_LARGE:
+      return make_result(FactorStatus::out_of_memory, what + ": out of memory");
+    case CHOLMOD_INVALID:
+      return make_result(FactorStatus::invalid_input, what + ": invalid input");
+    default:
+      return make_result(FactorStatus::internal_error, what);
+  }
+}
+
+}  // namespace
+
+CholmodEngine::CholmodEngine(CholmodKind kind, double dbound)
+    : kind_(kind), dbound_(dbound > 0.0 ? dbound : 0.0) {
+  cholmod_start(&common_);
+  common_.print = 0;
+  common_.error_handler = silent_error_handler;
+  common_.supernodal =
+      kind_ == CholmodKind::simplicial_ldlt ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
+  common_.final_ll = 0;  // a simplicial factor stays LDLᵀ (never converted to LLᵀ)
+  common_.final_asis = 1;
+  common_.nmethods = 1;  // AMD only, chosen once in analyze()
+  common_.method[0].ordering = CHOLMOD_AMD;
+  common_.postorder = 1;
+  common_.dbound = kind_ == CholmodKind::simplicial_ldlt ? dbound_ : 0.0;
+}
+
+CholmodEngine::~CholmodEngine() {
+  release();
+  cholmod_finish(&common_);
+}
+
+void CholmodEngine::release() {
+  if (L_) cholmod_free_factor(&L_, &common_);
+  if (X_) cholmod_free_dense(&X_, &common_);
+  if (Y_) cholmod_free_dense(&Y_, &common_);
+  if (E_) cholmod_free_dense(&E_, &common_);
+  pattern_.clear();
+  n_ = 0;
+  factored_ = false;
+  inertia_ = Inertia{};
+}
+
+cholmod_sparse CholmodEngine::view(const SparseMatrix& A) const {
+  cholmod_sparse s{};
+  s.nrow = static_cast<size_t>(A.rows());
+  s.ncol = static_cast<size_t>(A.cols());
+  s.nzmax = static_cast<size_t>(A.nonZeros());
+  s.p = const_cast<Index*>(A.outerIndexPtr());
+  // An empty matrix has no inner/value arrays; CHOLMOD wants non-null pointers anyway.
+  static Index no_index = 0;
+  static double no_value = 0.0;
+  s.i = A.nonZeros() > 0 ? const_cast<Index*>(A.innerIndexPtr()) : &no_index;
+  s.nz = nullptr;
+  s.x = A.nonZeros() > 0 ? const_cast<double*>(A.valuePtr()) : &no_value;
+  s.z = nullptr;
+  s.stype = 1;  // upper triangle used, lower ignored
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = pattern_.sorted() ? 1 : 0;
+  s.packed = 1;
+  return s;
+}
+
+FactorResult CholmodEngine::analyze(const SparseMatrix& A) {
+  release();
+  if (auto r = check_square(A); !r.ok()) return r;
+  CompressedRef ref(A);
+  pattern_.assign(ref.get());
+  cholmod_sparse a = view(ref.get());
+  common_.status = CHOLMOD_OK;
+  L_ = cholmod_analyze(&a, &common_);
+  if (!L_ || common_.status < CHOLMOD_OK) {
+    FactorResult r = from_common(common_, "cholmod_analyze");
+    release();
+    return r;
+  }
+  n_ = static_cast<Index>(A.rows());
+  return {};
+}
+
+FactorResult CholmodEngine::factorize(const SparseMatrix& A) {
+  if (!L_) return make_result(FactorStatus::not_analyzed, "factorize() before analyze()");
+  CompressedRef ref(A);
+  if (auto r = check_pattern(pattern_, ref.get()); !r.ok()) return r;
+  if (auto r = check_finite(ref.get()); !r.ok()) return r;
+  factored_ = false;
+  inertia_ = Inertia{};
+  cholmod_sparse a = view(ref.get());
+  common_.status = CHOLMOD_OK;
+  const int done = cholmod_factorize(&a, L_, &common_);
+  if (!done || common_.status < CHOLMOD_OK) return from_common(common_, "cholmod_factorize");
+  if (common_.status == CHOLMOD_NOT_POSDEF || L_->minor < static_cast<size_t>(n_)) {
+    return failed_pivot();
+  }
+  if (kind_ == CholmodKind::simplicial_ldlt) {
+    if (L_->is_ll || L_->is_super || L_->xtype != CHOLMOD_REAL) {
+      return make_result(FactorStatus::internal_error,
+                         "cholmod_factorize did not return a simplicial LDL' factor");
+    }
+    if (auto r = scan_diagonal(); !r.ok()) return r;
+  }
+  factored_ = true;
+  return {};
+}
+
+FactorResult CholmodEngine::failed_pivot() {
+  const Index k = static_cast<Index>(L_->minor);
+  const Index* perm = static_cast<const Index*>(L_->Perm);
+  const Index column = perm ? perm[k] : k;
+  const std::string where = "pivot " + std::to_string(k) + " (column " +
+                            std::to_string(column) + " of the input matrix)";
+  if (kind_ == CholmodKind::simplicial_ldlt) {
+    return make_result(FactorStatus::zero_pivot, "zero pivot in LDL': " + where, column);
+  }
+  return make_result(FactorStatus::not_positive_definite,
+                     "matrix is not positive definite: " + where, column);
+}
+
+FactorResult CholmodEngine::scan_diagonal() {
+  // Simplicial LDLᵀ: the first entry of column j of L is D(j,j).
+  const Index* Lp = static_cast<const Index*>(L_->p);
+  const double* Lx = static_cast<const double*>(L_->x);
+  const Index* perm = static_cast<const Index*>(L_->Perm);
+  Inertia in;
+  for (Index j = 0; j < n_; ++j) {
+    const double d = Lx[Lp[j]];
+    if (std::isnan(d)) {
+      const Index column = perm ? perm[j] : j;
+      return make_result(FactorStatus::zero_pivot,
+                         "NaN pivot in LDL': pivot " + std::to_string(j) + " (column " +
+                             std::to_string(column) + " of the input matrix)",
+                         column);
+    }
+    if (d > 0.0) {
+      ++in.positive;
+    } else if (d < 0.0) {
+      ++in.negative;
+    } else {
+      ++in.zero;
+    }
+  }
+  inertia_ = in;
+  return {};
+}
+
+FactorResult CholmodEngine::solve(Eigen::Ref<DenseMatrix> B) {
+  if (!factored_) {
+    return make_result(FactorStatus::not_analyzed, "solve() before a successful factorize()");
+  }
+  if (auto r = check_rhs(n_, static_cast<Index>(B.rows())); !r.ok()) return r;
+  if (B.cols() == 0 || n_ == 0) return {};
+  cholmod_dense b{};
+  b.nrow = static_cast<size_t>(n_);
+  b.ncol = static_cast<size_t>(B.cols());
+  b.d = static_cast<size_t>(B.outerStride());
+  b.nzmax = b.d * b.ncol;
+  b.x = B.data();
+  b.z = nullptr;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  common_.status = CHOLMOD_OK;
+  if (!cholmod_solve2(CHOLMOD_A, L_, &b, nullptr, &X_, nullptr, &Y_, &E_, &common_)) {
+    return from_common(common_, "cholmod_solve2");
+  }
+  const double* x = static_cast<const double*>(X_->x);
+  for (Eigen::Index j = 0; j < B.cols(); ++j) {
+    std::memcpy(B.col(j).data(), x + j * X_->d, sizeof(double) * static_cast<size_t>(n_));
+  }
+  return {};
+}
+
+long CholmodEngine::factor_nnz() const {
+  if (!L_) return 0;
+  long count = 0;
+  if (L_->is_super) {
+    // Each supernode stores a lower trapezoid: nscol columns over nsrow rows.
+    const Index* super = static_cast<const Index*>(L_->super);
+    const Index* pi = static_cast<const Index*>(L_->pi);
+    for (size_t s = 0; s < L_->nsuper; ++s) {
+      const long ncol = super[s + 1] - super[s];
+      const long nrow = pi[s + 1] - pi[s];
+      count += ncol * nrow - ncol * (ncol - 1) / 2;
+    }
+  } else if (L_->xtype == CHOLMOD_PATTERN) {
+    const Index* colcount = static_cast<const Index*>(L_->ColCount);
+    for (Index j = 0; j < n_; ++j) count += colcount[j];
+  } else {
+    const Index* nz = static_cast<const Index*>(L_->nz);
+    for (Index j = 0; j < n_; ++j) count += nz[j];
+  }
+  return count;
+}
+
+std::unique_ptr<CholmodEngine> CholmodEngine::clone_analysis() const {
+  auto clone = std::make_unique<CholmodEngine>(kind_, dbound_);
+  if (!L_) return clone;
+  cholmod_common& c = clone->common_;
+  clone->L_ = cholmod_copy_factor(L_, &c);
+  if (clone->L_ && clone->L_->xtype != CHOLMOD_PATTERN) {
+    // Drop the numeric values; the ordering and symbolic structure stay.
+    cholmod_change_factor(CHOLMOD_PATTERN, L_->is_ll, L_->is_super, 1, 1, clone->L_, &c);
+  }
+  if (!clone->L_ || c.status < CHOLMOD_OK) {
+    clone->release();
+    return clone;
+  }
+  clone->pattern_ = pattern_;
+  clone->n_ = n_;
+  return clone;
+}
+
+}  // namespace lcprelax::sparse::detail

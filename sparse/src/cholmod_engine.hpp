@@ -1,0 +1,55 @@
+#pragma once
+// Internal (not installed): the CHOLMOD machinery shared by CholmodLdlt (simplicial LDLᵀ)
+// and CholmodLlt (supernodal LLᵀ). One cholmod_common per engine, so engines are
+// independent and may be used from different threads.
+#include <lcprelax/sparse/cholmod_ldlt.hpp>
+
+#include <cholmod.h>
+
+#include <memory>
+
+#include "matrix_checks.hpp"
+
+namespace lcprelax::sparse::detail {
+
+enum class CholmodKind { simplicial_ldlt, supernodal_llt };
+
+class CholmodEngine {
+ public:
+  /// dbound > 0 enables CHOLMOD's dynamic regularization of tiny LDLᵀ pivots.
+  CholmodEngine(CholmodKind kind, double dbound);
+  ~CholmodEngine();
+  CholmodEngine(const CholmodEngine&) = delete;
+  CholmodEngine& operator=(const CholmodEngine&) = delete;
+
+  FactorResult analyze(const SparseMatrix& A);
+  FactorResult factorize(const SparseMatrix& A);
+  /// B ← A⁻¹B; uses workspace held by the engine (not safe to call concurrently).
+  FactorResult solve(Eigen::Ref<DenseMatrix> B);
+  long factor_nnz() const;
+  Index rows() const { return L_ ? n_ : 0; }
+  /// Signs of D of the last successful LDLᵀ factorization (all zero otherwise).
+  Inertia inertia() const { return inertia_; }
+  /// A new engine holding a copy of the symbolic analysis and no numeric factor.
+  std::unique_ptr<CholmodEngine> clone_analysis() const;
+
+ private:
+  void release();
+  cholmod_sparse view(const SparseMatrix& A) const;
+  FactorResult failed_pivot();
+  FactorResult scan_diagonal();
+
+  CholmodKind kind_;
+  double dbound_;
+  cholmod_common common_{};
+  cholmod_factor* L_ = nullptr;
+  cholmod_dense* X_ = nullptr;  // solve workspace, reused between solves
+  cholmod_dense* Y_ = nullptr;
+  cholmod_dense* E_ = nullptr;
+  Pattern pattern_;
+  Index n_ = 0;
+  bool factored_ = false;
+  Inertia inertia_;
+};
+
+}  // namespace lcprelax::sparse::detail

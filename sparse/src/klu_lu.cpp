@@ -1,0 +1,204 @@
+// KluLu: KLU sparse LU (BTF + AMD, partial pivoting) behind the Factorization interface.
+// The matrix is passed to KLU as its own CSC arrays (no copy); the pattern is saved at
+// analyze() and checked on every numeric (re)factorization.
+#include <lcprelax/sparse/klu_lu.hpp>
+
+#include <klu.h>
+
+#include <string>
+
+#include "matrix_checks.hpp"
+
+namespace lcprelax::sparse {
+
+using detail::make_result;
+
+struct KluLu::Impl {
+  klu_common common{};
+  klu_symbolic* symbolic = nullptr;
+  klu_numeric* numeric = nullptr;
+  detail::Pattern pattern;
+  Index n = 0;
+  bool analysed = false;  // KLU rejects n = 0, so an empty matrix has no symbolic object
+  bool factored = false;
+  double rcond = 0.0;
+
+  Impl() {
+    klu_defaults(&common);
+    common.halt_if_singular = 1;
+  }
+  ~Impl() { release(); }
+
+  void free_numeric() {
+    if (numeric) klu_free_numeric(&numeric, &common);
+    factored = false;
+    rcond = 0.0;
+  }
+  void release() {
+    free_numeric();
+    if (symbolic) klu_free_symbolic(&symbolic, &common);
+    pattern.clear();
+    n = 0;
+    analysed = false;
+  }
+
+  FactorResult from_common(const char* where) const {
+    const std::string what = std::string(where) + " failed (KLU status " +
+                             std::to_string(common.status) + ")";
+    switch (common.status) {
+      case KLU_SINGULAR: {
+        const Index col = common.singular_col;
+        return make_result(FactorStatus::singular,
+                           "matrix is singular: zero pivot in column " + std::to_string(col),
+                           col >= 0 && col < n ? col : -1);
+      }
+      case KLU_OUT_OF_MEMORY:
+      case KLU_TOO_LARGE:
+        return make_result(FactorStatus::out_of_memory, what + ": out of memory");
+      case KLU_INVALID:
+        return make_result(FactorStatus::invalid_input, what + ": invalid input");
+      default:
+        return make_result(FactorStatus::internal_error, what);
+    }
+  }
+
+  // Pattern and value checks shared by factorize() and refactorize().
+  FactorResult check(const SparseMatrix& A) const {
+    if (auto r = detail::check_pattern(pattern, A); !r.ok()) return r;
+    return detail::check_finite(A);
+  }
+
+  // B ← A⁻¹B or A⁻ᵀB in place; KLU reads B with leading dimension B.outerStride().
+  FactorResult solve(Eigen::Ref<DenseMatrix> B, bool transposed) {
+    if (!factored) {
+      return make_result(FactorStatus::not_analyzed, "solve() before a successful factorize()");
+    }
+    if (auto r = detail::check_rhs(n, static_cast<Index>(B.rows())); !r.ok()) return r;
+    if (B.cols() == 0 || n == 0) return {};
+    const Index ldim = static_cast<Index>(B.outerStride());
+    const Index nrhs = static_cast<Index>(B.cols());
+    const int done = transposed ? klu_tsolve(symbolic, numeric, ldim, nrhs, B.data(), &common)
+                                : klu_solve(symbolic, numeric, ldim, nrhs, B.data(), &common);
+    if (!done) return from_common(transposed ? "klu_tsolve" : "klu_solve");
+    return {};
+  }
+
+  // The 0×0 matrix: trivially factorized, perfectly conditioned.
+  FactorResult factor_empty(int& count) {
+    factored = true;
+    rcond = 1.0;
+    ++count;
+    return {};
+  }
+
+  void update_rcond() {
+    klu_rcond(symbolic, numeric, &common);
+    rcond = common.rcond;
+  }
+};
+
+namespace {
+FactorResult moved_from() {
+  return make_result(FactorStatus::not_analyzed, "object was moved from");
+}
+Index* ptr(const Index* p) { return const_cast<Index*>(p); }
+double* ptr(const double* p) { return const_cast<double*>(p); }
+}  // namespace
+
+KluLu::KluLu() : impl_(std::make_unique<Impl>()) {}
+KluLu::~KluLu() = default;
+KluLu::KluLu(KluLu&&) noexcept = default;
+KluLu& KluLu::operator=(KluLu&&) noexcept = default;
+
+FactorResult KluLu::analyze(const SparseMatrix& A) {
+  if (!impl_) return moved_from();
+  Impl& m = *impl_;
+  m.release();
+  if (auto r = detail::check_square(A); !r.ok()) return r;
+  detail::CompressedRef ref(A);
+  const SparseMatrix& M = ref.get();
+  const Index n = static_cast<Index>(M.rows());
+  if (n > 0) {
+    m.symbolic = klu_analyze(n, ptr(M.outerIndexPtr()), ptr(M.innerIndexPtr()), &m.common);
+    if (!m.symbolic) return m.from_common("klu_analyze");
+  }
+  m.pattern.assign(M);
+  m.n = n;
+  m.analysed = true;
+  return {};
+}
+
+FactorResult KluLu::factorize(const SparseMatrix& A) {
+  if (!impl_) return moved_from();
+  Impl& m = *impl_;
+  if (!m.analysed) {
+    return make_result(FactorStatus::not_analyzed, "factorize() before analyze()");
+  }
+  detail::CompressedRef ref(A);
+  const SparseMatrix& M = ref.get();
+  if (auto r = m.check(M); !r.ok()) return r;
+  m.free_numeric();
+  if (m.n == 0) return m.factor_empty(numeric_factorizations_);
+  m.numeric = klu_factor(ptr(M.outerIndexPtr()), ptr(M.innerIndexPtr()), ptr(M.valuePtr()),
+                         m.symbolic, &m.common);
+  if (!m.numeric || m.common.status != KLU_OK) {
+    FactorResult r = m.from_common("klu_factor");
+    m.free_numeric();
+    return r;
+  }
+  m.update_rcond();
+  m.factored = true;
+  ++numeric_factorizations_;
+  return {};
+}
+
+FactorResult KluLu::refactorize(const SparseMatrix& A) {
+  if (!impl_) return moved_from();
+  Impl& m = *impl_;
+  if (!m.numeric && !(m.analysed && m.n == 0)) {
+    return make_result(FactorStatus::not_analyzed,
+                       "refactorize() needs a successful factorize() first");
+  }
+  detail::CompressedRef ref(A);
+  const SparseMatrix& M = ref.get();
+  if (auto r = m.check(M); !r.ok()) return r;
+  if (m.n == 0) return m.factor_empty(numeric_factorizations_);
+  m.factored = false;
+  m.rcond = 0.0;
+  // On failure the Numeric object keeps its pivot order, so a later refactorize() may work.
+  const int done = klu_refactor(ptr(M.outerIndexPtr()), ptr(M.innerIndexPtr()),
+                                ptr(M.valuePtr()), m.symbolic, m.numeric, &m.common);
+  if (!done || m.common.status != KLU_OK) return m.from_common("klu_refactor");
+  m.update_rcond();
+  m.factored = true;
+  ++numeric_factorizations_;
+  return {};
+}
+
+FactorResult KluLu::solve(Eigen::Ref<DenseMatrix> B) const {
+  if (!impl_) return moved_from();
+  return impl_->solve(B, false);
+}
+
+FactorResult KluLu::solve_transposed(Eigen::Ref<DenseMatrix> B) const {
+  if (!impl_) return moved_from();
+  return impl_->solve(B, true);
+}
+
+long KluLu::factor_nnz() const {
+  if (!impl_) return 0;
+  const Impl& m = *impl_;
+  if (m.numeric) {
+    return static_cast<long>(m.numeric->lnz) + m.numeric->unz + m.numeric->nzoff;
+  }
+  if (m.symbolic) {
+    return static_cast<long>(m.symbolic->lnz + m.symbolic->unz) + m.symbolic->nzoff;
+  }
+  return 0;
+}
+
+Index KluLu::rows() const { return impl_ ? impl_->n : 0; }
+
+double KluLu::rcond() const { return impl_ ? impl_->rcond : 0.0; }
+
+}  // namespace lcprelax::sparse

@@ -1,0 +1,138 @@
+// `lcprelax qp` end to end (DESIGN §4): runs the built executable on HS21 and on bad input,
+// parses its JSON, and checks exit codes (0 solved, 2 bad input with nothing on stdout).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCli = LCPRELAX_CLI;
+const std::string kData = LCPRELAX_TEST_DATA_DIR;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;  ///< stdout (stderr goes to err_file)
+  std::string err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+std::string temp_path(const std::string& name) {
+  return (fs::temp_directory_path() / ("lcprelax_cli_qp_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+/// Runs `lcprelax <args>` through the shell; stdout is captured by popen, stderr by a file.
+CliRun run_cli(const std::string& args) {
+  const std::string err_file = temp_path("stderr.txt");
+  const std::string command = "'" + kCli + "' " + args + " 2>'" + err_file + "'";
+  CliRun r;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  char buffer[4096];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, got);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = slurp(err_file);
+  fs::remove(err_file);
+  return r;
+}
+
+const std::string kHs21 = kData + "/maros_meszaros/HS21.qps";
+
+class CliQp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (kCli.empty() || !fs::exists(kCli)) GTEST_SKIP() << "lcprelax executable not built";
+  }
+};
+
+TEST_F(CliQp, Hs21JsonReport) {
+  const CliRun r = run_cli("qp '" + kHs21 + "' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);  // exactly one JSON object
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.at("status"), "solved");
+  const double objective = j.at("objective").get<double>();
+  EXPECT_NEAR(objective, -99.96, 1e-6 * 99.96);
+  EXPECT_GT(j.at("iterations").get<int>(), 0);
+  for (const char* key : {"primal_residual", "dual_residual", "duality_gap"}) {
+    ASSERT_TRUE(j.at(key).is_number()) << key;
+    EXPECT_LE(std::abs(j.at(key).get<double>()), 1e-6) << key;
+  }
+  EXPECT_GE(j.at("seconds").get<double>(), 0.0);
+  EXPECT_EQ(j.size(), 7u);
+}
+
+TEST_F(CliQp, Hs21SolutionFile) {
+  const std::string out = temp_path("solution.json");
+  const CliRun r = run_cli("qp '" + kHs21 + "' --eps 1e-8 --max-iter 100 --json --solution '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json s = nlohmann::json::parse(slurp(out));
+  fs::remove(out);
+  ASSERT_EQ(s.at("x").size(), 2u);
+  ASSERT_EQ(s.at("y_rows").size(), 1u);
+  ASSERT_EQ(s.at("y_bounds").size(), 2u);
+  // Optimum x = (2, 0): the lower bound of x0 is active (y_bounds[0] < 0), the row is not.
+  EXPECT_NEAR(s["x"][0].get<double>(), 2.0, 1e-6);
+  EXPECT_NEAR(s["x"][1].get<double>(), 0.0, 1e-6);
+  EXPECT_LT(s["y_bounds"][0].get<double>(), 0.0);
+  // Stationarity Px + q + Gᵀy_rows + y_bounds = 0 with P = diag(0.02, 2), G = [10, −1].
+  const double x0 = s["x"][0], x1 = s["x"][1], y = s["y_rows"][0];
+  EXPECT_NEAR(0.02 * x0 + 10.0 * y + s["y_bounds"][0].get<double>(), 0.0, 1e-6);
+  EXPECT_NEAR(2.0 * x1 - 1.0 * y + s["y_bounds"][1].get<double>(), 0.0, 1e-6);
+}
+
+TEST_F(CliQp, HumanReadableReport) {
+  const CliRun r = run_cli("qp '" + kHs21 + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("solved"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("HS21"), std::string::npos) << r.out;
+}
+
+TEST_F(CliQp, MalformedFileIsBadInput) {
+  const std::string bad = kData + "/qps/malformed/unknown_row.qps";
+  const CliRun r = run_cli("qp '" + bad + "' --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find(bad + ":8:"), std::string::npos) << r.err;
+}
+
+TEST_F(CliQp, MissingFileIsBadInput) {
+  const CliRun r = run_cli("qp '" + kData + "/qps/no_such_file.qps' --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("cannot open"), std::string::npos) << r.err;
+}
+
+TEST_F(CliQp, BadOptionsAreBadInput) {
+  for (const std::string options : {"--eps -1", "--eps abc", "--eps nan", "--max-iter 0", "--max-iter 2.5", "--bogus"}) {
+    const CliRun r = run_cli("qp '" + kHs21 + "' --json " + options);
+    EXPECT_EQ(r.exit_code, 2) << options;
+    EXPECT_EQ(r.out, "") << options;
+    EXPECT_FALSE(r.err.empty()) << options;
+  }
+  EXPECT_EQ(run_cli("").exit_code, 2);  // no subcommand
+}
+
+TEST_F(CliQp, IterationLimitIsSolveFailure) {
+  const CliRun r = run_cli("qp '" + kData + "/maros_meszaros/QAFIRO.qps' --max-iter 1 --json");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_NE(j.at("status"), "solved");
+  EXPECT_TRUE(j.at("objective").is_number() || j.at("objective").is_null());
+}
+
+}  // namespace

@@ -1,0 +1,184 @@
+// KluLu: sparse LU of seeded random unsymmetric matrices — solve and transposed solve
+// residuals, refactorization with the kept pivot order, singular matrices, rcond.
+#include <lcprelax/sparse/klu_lu.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace {
+
+using lcprelax::DenseMatrix;
+using lcprelax::SparseMatrix;
+using lcprelax::Triplet;
+using lcprelax::sparse::FactorStatus;
+using lcprelax::sparse::KluLu;
+
+// Unsymmetric, with a fixed pattern for a given n (values depend on seed and scale).
+SparseMatrix unsymmetric(int n, unsigned seed, double scale = 1.0) {
+  std::mt19937 pattern_gen(99);
+  std::bernoulli_distribution keep(0.1);
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> val(-1.0, 1.0);
+  std::vector<Triplet> t;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      if (i != j && !keep(pattern_gen)) continue;
+      t.emplace_back(i, j, scale * (i == j ? 0.5 : 1.0) * val(gen));
+    }
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+DenseMatrix random_rhs(int rows, int cols, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> val(-1.0, 1.0);
+  DenseMatrix B(rows, cols);
+  for (int j = 0; j < cols; ++j)
+    for (int i = 0; i < rows; ++i) B(i, j) = val(gen);
+  return B;
+}
+
+double relative_residual(const DenseMatrix& A, const DenseMatrix& X, const DenseMatrix& B) {
+  const double a_norm = A.cwiseAbs().rowwise().sum().maxCoeff();
+  return (A * X - B).cwiseAbs().maxCoeff() /
+         (a_norm * X.cwiseAbs().maxCoeff() + B.cwiseAbs().maxCoeff());
+}
+
+TEST(KluLu, SolvesAndTransposeSolvesUnsymmetricSystems) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const SparseMatrix A = unsymmetric(80, seed);
+    KluLu f;
+    ASSERT_TRUE(f.analyze(A).ok());
+    EXPECT_GT(f.factor_nnz(), 0);
+    const auto r = f.factorize(A);
+    ASSERT_TRUE(r.ok()) << r.message;
+    EXPECT_GE(f.factor_nnz(), A.nonZeros());
+    const DenseMatrix B = random_rhs(80, 3, seed + 10);
+    DenseMatrix X = B, Y = B;
+    ASSERT_TRUE(f.solve(X).ok());
+    ASSERT_TRUE(f.solve_transposed(Y).ok());
+    const DenseMatrix Ad(A);
+    // Threshold partial pivoting (KLU tol 0.001) allows some growth: 1e-11, not 1e-15.
+    EXPECT_LT(relative_residual(Ad, X, B), 1e-11) << "seed " << seed;
+    EXPECT_LT(relative_residual(Ad.transpose(), Y, B), 1e-11) << "seed " << seed;
+    EXPECT_GT((X - Y).cwiseAbs().maxCoeff(), 1e-6);  // A is not symmetric
+  }
+}
+
+TEST(KluLu, SolvesIntoABlockWithALeadingDimension) {
+  const SparseMatrix A = unsymmetric(30, 4);
+  KluLu f;
+  ASSERT_TRUE(f.analyze(A).ok());
+  ASSERT_TRUE(f.factorize(A).ok());
+  const DenseMatrix B = random_rhs(30, 2, 5);
+  DenseMatrix X = B;
+  ASSERT_TRUE(f.solve(X).ok());
+  DenseMatrix tall = DenseMatrix::Constant(33, 2, 7.0);
+  tall.topRows(30) = B;
+  ASSERT_TRUE(f.solve(tall.topRows(30)).ok());
+  EXPECT_EQ((tall.topRows(30) - X).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(tall.bottomRows(3).minCoeff(), 7.0);
+  DenseMatrix none(30, 0);
+  EXPECT_TRUE(f.solve(none).ok());
+}
+
+TEST(KluLu, RefactorizesWithTheKeptPivotOrder) {
+  const SparseMatrix A1 = unsymmetric(60, 6);
+  const SparseMatrix A2 = unsymmetric(60, 6, 1.5);  // same values scaled: pivots stay good
+  const SparseMatrix A3 = unsymmetric(60, 7);
+  KluLu f;
+  ASSERT_TRUE(f.analyze(A1).ok());
+  EXPECT_EQ(f.refactorize(A1).status, FactorStatus::not_analyzed);  // needs factorize()
+  ASSERT_TRUE(f.factorize(A1).ok());
+  ASSERT_TRUE(f.refactorize(A2).ok());
+  EXPECT_EQ(f.numeric_factorizations(), 2);
+  const DenseMatrix b = random_rhs(60, 1, 8);
+  DenseMatrix x = b;
+  ASSERT_TRUE(f.solve(x).ok());
+  EXPECT_LT(relative_residual(DenseMatrix(A2), x, b), 1e-11);
+  ASSERT_TRUE(f.factorize(A3).ok());
+  x = b;
+  ASSERT_TRUE(f.solve(x).ok());
+  EXPECT_LT(relative_residual(DenseMatrix(A3), x, b), 1e-11);
+  SparseMatrix other = A1;
+  other.coeffRef(0, 59) += 1.0;
+  if (A1.coeff(0, 59) != 0.0) other.coeffRef(1, 59) += 1.0;
+  EXPECT_EQ(f.factorize(other).status, FactorStatus::pattern_mismatch);
+  EXPECT_EQ(f.refactorize(other).status, FactorStatus::pattern_mismatch);
+  SparseMatrix nan = A1;
+  nan.valuePtr()[5] = std::nan("");
+  EXPECT_EQ(f.refactorize(nan).status, FactorStatus::invalid_input);
+  EXPECT_EQ(f.numeric_factorizations(), 3);
+}
+
+TEST(KluLu, ReportsSingularMatrices) {
+  // Rows 0 and 2 are equal: numerically singular.
+  DenseMatrix D(3, 3);
+  D << 1, 2, 3,
+       4, 5, 6,
+       1, 2, 3;
+  const SparseMatrix A = D.sparseView();
+  KluLu f;
+  ASSERT_TRUE(f.analyze(A).ok());
+  const auto r = f.factorize(A);
+  EXPECT_EQ(r.status, FactorStatus::singular);
+  EXPECT_FALSE(r.message.empty());
+  EXPECT_GE(r.pivot, 0);
+  DenseMatrix x = DenseMatrix::Ones(3, 1);
+  EXPECT_EQ(f.solve(x).status, FactorStatus::not_analyzed);
+  // Structurally singular: column 1 is empty.
+  std::vector<Triplet> t{{0, 0, 1.0}, {1, 0, 2.0}, {2, 2, 3.0}, {1, 2, 1.0}};
+  SparseMatrix S(3, 3);
+  S.setFromTriplets(t.begin(), t.end());
+  KluLu g;
+  ASSERT_TRUE(g.analyze(S).ok());
+  EXPECT_EQ(g.factorize(S).status, FactorStatus::singular);
+  EXPECT_EQ(g.numeric_factorizations(), 0);
+}
+
+TEST(KluLu, EstimatesReciprocalCondition) {
+  KluLu f;
+  EXPECT_EQ(f.rcond(), 0.0);  // no factorization yet
+  SparseMatrix I(4, 4);
+  I.setIdentity();
+  ASSERT_TRUE(f.analyze(I).ok());
+  ASSERT_TRUE(f.factorize(I).ok());
+  EXPECT_DOUBLE_EQ(f.rcond(), 1.0);
+  // KLU scales rows by their largest entry, so a tiny diagonal alone is not ill-conditioned;
+  // nearly dependent rows are: [1 1; 1 1+1e-10] has min|Uᵢᵢ| / max|Uᵢᵢ| ≈ 1e-10.
+  DenseMatrix W(2, 2);
+  W << 2, 1,
+       1, 2;
+  DenseMatrix N(2, 2);
+  N << 1, 1,
+       1, 1 + 1e-10;
+  ASSERT_TRUE(f.analyze(W.sparseView()).ok());
+  ASSERT_TRUE(f.factorize(W.sparseView()).ok());
+  EXPECT_GT(f.rcond(), 0.5);
+  ASSERT_TRUE(f.refactorize(N.sparseView()).ok());
+  EXPECT_GT(f.rcond(), 1e-11);
+  EXPECT_LT(f.rcond(), 1e-9);
+}
+
+TEST(KluLu, LifecycleAndEmptyMatrix) {
+  KluLu f;
+  DenseMatrix x(2, 1);
+  EXPECT_EQ(f.solve(x).status, FactorStatus::not_analyzed);
+  EXPECT_EQ(f.analyze(SparseMatrix(2, 3)).status, FactorStatus::invalid_input);
+  const SparseMatrix E(0, 0);
+  ASSERT_TRUE(f.analyze(E).ok());
+  ASSERT_TRUE(f.factorize(E).ok());
+  DenseMatrix e(0, 1);
+  EXPECT_TRUE(f.solve(e).ok());
+  KluLu g(std::move(f));
+  EXPECT_EQ(g.numeric_factorizations(), 1);
+  EXPECT_EQ(f.rows(), 0);  // NOLINT(bugprone-use-after-move): moved-from stays safe
+  EXPECT_EQ(f.analyze(E).status, FactorStatus::not_analyzed);
+}
+
+}  // namespace
