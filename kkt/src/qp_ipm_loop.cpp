@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace lcprelax {
@@ -22,6 +23,7 @@ bool within(const detail::Residuals& r, const QpSettings& s, double factor) {
 
 constexpr double kInaccurateFactor = 1e3;  // stalled solves within 1e3·eps: solved_inaccurate
 constexpr int kFirstInfeasibilityCheck = 3;
+constexpr int kStallIterations = 15;  // no 10% gain in the worst scaled residual: stalled
 constexpr double kDivergence = 1e13;  // scaled iterate norm taken as divergence
 
 void fill_residuals(QpInfo& info, const detail::Residuals& r) {
@@ -44,6 +46,8 @@ void QpSolver::Impl::run(QpInfo& info) {
   Vector rd, rp, dx, dy, dz, zg, zb, last_dx, last_dy;
   bool have_step = false;
   int tiny_steps = 0;
+  double best_merit = std::numeric_limits<double>::infinity();
+  int best_iteration = 0;
   detail::Residuals res;
   QpResult best;
   for (info.iterations = 0;; ++info.iterations) {
@@ -86,6 +90,15 @@ void QpSolver::Impl::run(QpInfo& info) {
     };
     if (info.iterations >= settings.max_iter) return give_up(QpStatus::max_iterations, "iteration limit reached");
     if (seconds_since(t0) > settings.time_limit) return give_up(QpStatus::time_limit, "time limit reached");
+    const double merit = std::max({res.primal / (settings.eps_abs + settings.eps_rel * res.scale_p),
+                                   res.dual / (settings.eps_abs + settings.eps_rel * res.scale_d),
+                                   res.gap / (settings.eps_abs + settings.eps_rel * res.scale_g)});
+    if (merit < 0.9 * best_merit) {
+      best_merit = merit;
+      best_iteration = info.iterations;
+    }
+    if (info.iterations - best_iteration >= kStallIterations)
+      return give_up(QpStatus::numerical_error, "no progress in the residuals for 15 iterations");
     if (tiny_steps >= 5) return give_up(QpStatus::numerical_error, "no progress: step lengths below 1e-10");
     double iterate_norm = std::max(it.x.size() ? it.x.lpNorm<Eigen::Infinity>() : 0.0,
                                    it.y.size() ? it.y.lpNorm<Eigen::Infinity>() : 0.0);

@@ -10,6 +10,12 @@ namespace {
 
 double inf_norm(const Vector& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
+long double long_dot(const Vector& a, const Vector& b) {
+  long double s = 0.0L;
+  for (Index i = 0; i < a.size(); ++i) s += static_cast<long double>(a(i)) * b(i);
+  return s;
+}
+
 double dist_to_box(double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); }
 
 // u z⁺ + l z⁻, skipping infinite bounds with zero multiplier.
@@ -52,12 +58,14 @@ Residuals compute_residuals(const QpProblem& p, const QpResult& r) {
   out.dual = inf_norm(Px + p.q + Aty + Gtz + r.z_bounds);
   out.scale_d = std::max({inf_norm(Px), inf_norm(p.q), inf_norm(Aty), inf_norm(Gtz), inf_norm(r.z_bounds)});
 
-  double sup = 0.0;
+  // The gap is a difference of large terms on badly scaled problems: accumulate in long
+  // double so that its own roundoff stays below the tolerance.
+  long double sup = 0.0L;
   for (Index i = 0; i < r.z.size(); ++i) sup += support(r.z(i), p.l(i), p.u(i));
   for (Index j = 0; j < r.z_bounds.size(); ++j) sup += support(r.z_bounds(j), p.xl(j), p.xu(j));
-  const double xPx = r.x.dot(Px), qx = p.q.dot(r.x), by = p.b.dot(r.y);
-  out.gap = std::abs(xPx + qx + by + sup);
-  out.scale_g = std::max({std::abs(xPx), std::abs(qx), std::abs(by), std::abs(sup)});
+  const long double xPx = long_dot(r.x, Px), qx = long_dot(p.q, r.x), by = long_dot(p.b, r.y);
+  out.gap = static_cast<double>(std::abs(xPx + qx + by + sup));
+  out.scale_g = static_cast<double>(std::max({std::abs(xPx), std::abs(qx), std::abs(by), std::abs(sup)}));
   return out;
 }
 

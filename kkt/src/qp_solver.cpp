@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace lcprelax {
@@ -156,14 +157,36 @@ bool QpSolver::Impl::initial_point(QpInfo& info) {
   info.refinement_steps +=
       kkt.solve(form, -form.q + Db.cwiseProduct(xc), form.be, gc, it.x, it.y, dz, settings.max_refinement);
   if (form.me == 0) it.y = Vector::Zero(0);
+  // Slacks ŝ of the least-squares point and multiplier estimates ẑ = −ŝ (the row
+  // multiplier of that solve), shifted into the interior by Mehrotra's heuristic
+  // (Mehrotra 1992, §7; the estimate ẑ = −ŝ as in CVXOPT's starting point).
   it.compute_side_residuals(form);
+  double min_s = std::numeric_limits<double>::infinity();
   for (detail::Side* s : it.sides()) {
     const bool rows = (s == &it.g_lower || s == &it.g_upper);
     for (Index k = 0; k < s->size(); ++k) {
       const double v = rows ? it.vg(s->idx[k]) : it.x(s->idx[k]);
-      s->s(k) = std::max(s->upper ? s->bound(k) - v : v - s->bound(k), 1.0);
-      s->z(k) = 1.0;
+      s->s(k) = s->upper ? s->bound(k) - v : v - s->bound(k);
+      min_s = std::min(min_s, s->s(k));
     }
+  }
+  if (it.num_constraints() == 0) return true;
+  double max_s = -std::numeric_limits<double>::infinity();
+  for (detail::Side* s : it.sides())
+    if (s->size()) max_s = std::max(max_s, s->s.maxCoeff());
+  const double shift_s0 = std::max(-1.5 * min_s, 0.0), shift_z0 = std::max(1.5 * max_s, 0.0);  // ẑ = −ŝ
+  double sz = 0.0, sum_s = 0.0, sum_z = 0.0;
+  for (detail::Side* s : it.sides()) {
+    s->z = (shift_z0 - s->s.array()).matrix();
+    s->s.array() += shift_s0;
+    sz += s->s.dot(s->z);
+    sum_s += s->s.sum();
+    sum_z += s->z.sum();
+  }
+  const double shift_s = sum_z > 0 ? 0.5 * sz / sum_z : 1.0, shift_z = sum_s > 0 ? 0.5 * sz / sum_s : 1.0;
+  for (detail::Side* s : it.sides()) {
+    s->s.array() += std::max(shift_s, 1e-2);
+    s->z.array() += std::max(shift_z, 1e-2);
   }
   return true;
 }
