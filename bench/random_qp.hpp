@@ -8,13 +8,17 @@
 //                 l ≤ G x ≤ u      (n/2 rows, 4 nonzeros each, ~20% one-sided)
 //                 xl ≤ x ≤ xu      (~90% of the variables boxed, the rest free)
 // with
+// - local random structure: every row of M, A and G draws its columns from a window of
+//   ±bandwidth columns around an anchor that sweeps 0 … n−1, so the KKT factor's fill
+//   grows linearly in n (uniformly random patterns are expanders whose fill grows about
+//   quadratically: n = 10⁵ would not fit any direct factorization);
 // - P = MᵀM + αI (upper triangle stored), M n×n with 2 or 3 nonzeros per row, so that a
 //   column of P holds about 1 + 2.5·1.5 ≈ 5 nonzeros; P is positive definite (α > 0), so
 //   the problem is bounded whatever the constraints;
 // - a point x0 ∈ [−1, 1]ⁿ with b = A x0, l < G x0 < u and xl < x0 < xu, so that the
 //   problem is strictly feasible (b is in A's range because it is built from x0);
-// - equality row i always touches column 4i (a matching of rows to distinct columns), so
-//   A has full row rank with probability one;
+// - equality row i always touches its anchor column 4i (a matching of rows to distinct
+//   columns), so A has full row rank with probability one;
 // - q ~ N(0, σ²) large enough that a fair share of the inequalities and bounds is active
 //   at the optimum (the backward pass then sees a nontrivial active set).
 // The loss gradient ∂ℓ/∂x is an independent N(0, 1) vector.
@@ -42,33 +46,35 @@ struct RandomQpOptions {
   double q_scale = 5.0;          ///< standard deviation of q
   double one_sided_rows = 0.2;   ///< fraction of G rows with l = −∞
   double free_variables = 0.1;   ///< fraction of variables without bounds
+  Index bandwidth = 16;          ///< half-width of the column window of each row
 };
 
 namespace detail {
 
-/// k distinct random columns in [0, n), appended to `cols` (k ≤ n).
-inline void sample_columns(std::mt19937_64& rng, Index n, int k, std::vector<Index>& cols) {
-  std::uniform_int_distribution<Index> pick(0, n - 1);
+/// k distinct random columns in [anchor − w, anchor + w] ∩ [0, n), appended to `cols`
+/// (fewer when the window holds fewer than k columns).
+inline void sample_columns(std::mt19937_64& rng, Index n, Index anchor, Index w, int k, std::vector<Index>& cols) {
+  const Index lo = std::max<Index>(0, anchor - w), hi = std::min<Index>(n - 1, anchor + w);
+  std::uniform_int_distribution<Index> pick(lo, hi);
   const std::size_t start = cols.size();
+  k = std::min<int>(k, hi - lo + 1 - static_cast<int>(start));
   while (static_cast<int>(cols.size() - start) < k) {
     const Index c = pick(rng);
-    if (std::find(cols.begin() + static_cast<std::ptrdiff_t>(start), cols.end(), c) == cols.end()) {
-      cols.push_back(c);
-    }
+    if (std::find(cols.begin(), cols.end(), c) == cols.end()) cols.push_back(c);
   }
 }
 
-/// rows×n sparse matrix with `per_row` random nonzeros in [−1, 1] per row; row i also
-/// gets column (i·stride) mod n when stride > 0.
-inline SparseMatrix random_rows(std::mt19937_64& rng, Index rows, Index n, int per_row, Index stride) {
+/// rows×n sparse matrix with `per_row` nonzeros of magnitude in [0.1, 1] per row; row i
+/// has anchor column a = ⌊i·n/rows⌋, always holds column a, and draws the others from a ± w.
+inline SparseMatrix random_rows(std::mt19937_64& rng, Index rows, Index n, int per_row, Index w) {
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   std::vector<Triplet> triplets;
-  triplets.reserve(static_cast<std::size_t>(rows) * static_cast<std::size_t>(per_row + 1));
+  triplets.reserve(static_cast<std::size_t>(rows) * static_cast<std::size_t>(per_row));
   std::vector<Index> cols;
   for (Index i = 0; i < rows; ++i) {
-    cols.clear();
-    if (stride > 0) cols.push_back(static_cast<Index>((static_cast<std::int64_t>(i) * stride) % n));
-    detail::sample_columns(rng, n, std::min<int>(per_row, n) - static_cast<int>(cols.size()), cols);
+    const Index anchor = static_cast<Index>(static_cast<std::int64_t>(i) * n / rows);
+    cols.assign(1, anchor);
+    sample_columns(rng, n, anchor, w, per_row - 1, cols);
     for (Index c : cols) {
       double v = value(rng);
       if (std::abs(v) < 0.1) v = v < 0.0 ? -0.1 : 0.1;  // keep entries away from zero
@@ -101,7 +107,7 @@ inline RandomQp make_random_qp(Index n, std::uint64_t seed, const RandomQpOption
     std::vector<Index> cols;
     for (Index i = 0; i < n; ++i) {
       cols.clear();
-      detail::sample_columns(rng, n, unit(rng) < 0.5 ? 2 : 3, cols);
+      detail::sample_columns(rng, n, i, opt.bandwidth, unit(rng) < 0.5 ? 2 : 3, cols);
       for (Index c : cols) triplets.emplace_back(i, c, sym(rng));
     }
     SparseMatrix m(n, n);
@@ -119,10 +125,10 @@ inline RandomQp make_random_qp(Index n, std::uint64_t seed, const RandomQpOption
 
   p.q = Vector::NullaryExpr(n, [&]() { return opt.q_scale * normal(rng); });
 
-  p.A = detail::random_rows(rng, n / 4, n, 3, 4);
+  p.A = detail::random_rows(rng, n / 4, n, 3, opt.bandwidth);
   p.b = p.A * x0;
 
-  p.G = detail::random_rows(rng, n / 2, n, 4, 0);
+  p.G = detail::random_rows(rng, n / 2, n, 4, opt.bandwidth);
   const Vector g0 = p.G * x0;
   p.l.resize(p.G.rows());
   p.u.resize(p.G.rows());

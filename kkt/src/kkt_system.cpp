@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 namespace lcprelax::detail {
 namespace {
@@ -223,7 +221,6 @@ int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, 
     return r;
   };
   double res = residual(dx, dy, dz);
-  const double res0 = res;
   int steps = 0;
   for (; steps < max_refinement; ++steps) {
     if (!(res > 1e-15 * (1.0 + rhs_norm))) break;
@@ -238,7 +235,6 @@ int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, 
     res = nres;
     if (slow) break;
   }
-  if (std::getenv("LCPRELAX_DEBUG_KKT")) std::fprintf(stderr, "   refine: rhs %.2e res %.2e -> %.2e in %d\n", rhs_norm, res0, res, steps);
   return steps;
 }
 

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Installs lcprelax's build and test dependencies from Debian 12 packages (run as root or
+# with sudo). Idempotent.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update
+$SUDO apt-get install -y --no-install-recommends \
+  build-essential cmake libeigen3-dev libsuitesparse-dev libgtest-dev libgmock-dev \
+  libbenchmark-dev nlohmann-json3-dev libcli11-dev coinor-clp
