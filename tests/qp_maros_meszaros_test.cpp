@@ -128,8 +128,9 @@ TEST_P(MarosMeszaros, SolvesToTolerance) {
   const double obj = p.objective(r.x);
   EXPECT_NEAR(info.objective, obj, 1e-9 * std::max(1.0, std::fabs(obj)));
   const auto it = known_objectives().find(name);
-  if (it != known_objectives().end())
+  if (it != known_objectives().end()) {
     EXPECT_NEAR(info.objective, it->second, 1e-6 * std::fabs(it->second)) << "known optimum";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(All, MarosMeszaros, ::testing::ValuesIn(problem_names()),

@@ -139,7 +139,9 @@ void expect_kkt(const QpProblem& p, const QpResult& r, double tol) {
   const Vector Px = p.P.selfadjointView<Eigen::Upper>() * r.x;
   const Vector stat = Px + p.q + p.A.transpose() * r.y + p.G.transpose() * r.z + r.z_bounds;
   EXPECT_LE(stat.lpNorm<Eigen::Infinity>(), tol) << "stationarity";
-  if (p.num_equalities()) EXPECT_LE((p.A * r.x - p.b).lpNorm<Eigen::Infinity>(), tol) << "Ax = b";
+  if (p.num_equalities()) {
+    EXPECT_LE((p.A * r.x - p.b).lpNorm<Eigen::Infinity>(), tol) << "Ax = b";
+  }
   const Vector Gx = p.G * r.x;
   double prim = 0, comp = 0;
   for (Index i = 0; i < Gx.size(); ++i) {
