@@ -1,0 +1,78 @@
+#pragma once
+// Linear complementarity problem, solver statuses, settings and results.
+//
+//     find z, w  with  w = M z + q,   0 ≤ z ⊥ w ≥ 0      (M n×n, q n)
+//
+// Residual reported on every solve (Info::complementarity): max_i |min(z_i, w_i)| with w
+// recomputed as Mz + q from the returned z, i.e. 0 exactly at a solution; it is the
+// natural-map residual in the ∞-norm.
+#include <lcprelax/sparse/types.hpp>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace lcprelax {
+
+enum class LcpStatus {
+  unsolved,         ///< solve() was not called
+  solved,           ///< complementary basis found, residual within tolerance
+  ray_termination,  ///< Lemke's ray: no solution found (infeasible, or M outside the classes Lemke covers)
+  pivot_limit,      ///< stopped at LemkeSettings::max_pivots
+  numerical_error,  ///< singular basis or residual above tolerance after refactorization
+  invalid_input     ///< batch use; setup() throws InputError instead
+};
+
+constexpr const char* to_string(LcpStatus s) {
+  switch (s) {
+    case LcpStatus::unsolved: return "unsolved";
+    case LcpStatus::solved: return "solved";
+    case LcpStatus::ray_termination: return "ray_termination";
+    case LcpStatus::pivot_limit: return "pivot_limit";
+    case LcpStatus::numerical_error: return "numerical_error";
+    case LcpStatus::invalid_input: return "invalid_input";
+  }
+  return "unknown";
+}
+
+struct LemkeSettings {
+  /// Pivot limit; 0 means 50·(n + 1) + 2ⁿ capped at 10⁷ (enough for Murty's examples).
+  long max_pivots = 0;
+  /// Zero tolerance of the ratio tests; 0 means 10·n·ε·max(1, ‖M‖∞) (scaled as in Drake's
+  /// MobyLCP, which follows Cottle, Pang & Stone).
+  double pivot_tolerance = 0.0;
+  /// Accepted complementarity residual max|min(z, w)|; 0 means 1e-9·max(1, ‖q‖∞).
+  double residual_tolerance = 0.0;
+  /// Refactorize the basis from scratch every this many pivots (drift control).
+  int refactor_interval = 50;
+  /// Covering vector d > 0 of the artificial variable (empty: all ones).
+  Vector covering;
+
+  /// Empty when valid, else a message naming the first bad field.
+  std::string validation_error() const;
+};
+
+struct LcpInfo {
+  LcpStatus status = LcpStatus::unsolved;
+  std::string message = "solve() was not called";
+  long pivots = 0;
+  double complementarity = std::numeric_limits<double>::quiet_NaN();  ///< max|min(z, w)|
+  double seconds = 0.0;
+  bool warm_started = false;  ///< the warm-start basis was complementary and feasible
+};
+
+struct LcpResult {
+  Vector z;
+  Vector w;
+  /// Final basis: basis[i] = true if z_i is basic (else w_i); usable as a warm start.
+  std::vector<bool> z_basic;
+  LcpInfo info;
+};
+
+/// ∂ℓ/∂M (on M's sparsity pattern) and ∂ℓ/∂q.
+struct LcpGradient {
+  SparseMatrix dM;
+  Vector dq;
+};
+
+}  // namespace lcprelax

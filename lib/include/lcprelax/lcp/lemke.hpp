@@ -1,0 +1,53 @@
+#pragma once
+// Lemke's complementary pivoting method with lexicographic anti-cycling (dense path).
+//
+// Method (Cottle, Pang & Stone, "The Linear Complementarity Problem", 1992, §4.4): with a
+// covering vector d > 0 and artificial z₀, start from the almost-complementary basis
+// {w} of  w − Mz − d z₀ = q, bring z₀ in at the most negative q_i/d_i, and then let the
+// complement of each leaving variable enter, until z₀ leaves (solved) or an entering
+// column has no positive entry (ray termination). Minimum-ratio ties are broken
+// lexicographically on the rows of [B⁻¹q, B⁻¹], which prevents cycling on degenerate
+// problems. The dense path keeps B⁻¹ explicitly (O(n²) per pivot, product-form update,
+// refactorized every refactor_interval pivots and at the end): meant for small n.
+//
+// Warm start: a basis (which of z_i / w_i is basic) whose basic solution is feasible
+// solves in zero pivots; otherwise the solve starts cold.
+//
+// Backward: at a solution with complementary basis B (columns e_i for basic w_i and −M_:j
+// for basic z_j), the basic values are x_B = B⁻¹q, so for ℓ(z):
+//     λ = B⁻ᵀ g   (g = ∂ℓ/∂x_B: ∂ℓ/∂z_j on basic z_j, 0 on basic w_i),
+//     ∂ℓ/∂q = λ,   ∂ℓ/∂M_ij = λ_i z_j,
+// one transposed solve with the final basis, no refactorization. At a degenerate solution
+// (z_i = w_i = 0 for some i) the solution map is not differentiable; the result is the
+// derivative for the final basis, i.e. one of the one-sided derivatives, and which one
+// depends on the pivot path.
+#include <lcprelax/lcp/lcp_types.hpp>
+
+#include <memory>
+
+namespace lcprelax {
+
+class LemkeSolver {
+ public:
+  explicit LemkeSolver(LemkeSettings settings = {});
+  ~LemkeSolver();
+  LemkeSolver(LemkeSolver&&) noexcept;
+  LemkeSolver& operator=(LemkeSolver&&) noexcept;
+
+  /// Validates (square M, sizes, finite values, covering > 0; throws InputError).
+  void setup(const SparseMatrix& M, const Vector& q);
+  /// New q (same n), keeping M.
+  void update_q(const Vector& q);
+  /// Basis to try first in the next solve() (size n; true = z_i basic).
+  void warm_start(const std::vector<bool>& z_basic);
+  const LcpResult& solve();
+  /// Gradient of ℓ(z) given ∂ℓ/∂z; requires status solved (else std::logic_error).
+  LcpGradient backward(const Vector& dl_dz) const;
+  const LcpResult& result() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lcprelax
