@@ -19,6 +19,7 @@ struct LemkeSolver::Impl {
   DenseMatrix Md;
   Vector q, d;
   double tol = 0, res_tol = 0;
+  double q_scale = 1.0;  // min(1, ‖q‖∞): scale of the x_B ratio ties
   long max_pivots = 0;
   bool is_setup = false;
   std::vector<bool> warm;
@@ -46,25 +47,31 @@ struct LemkeSolver::Impl {
     return B;
   }
 
-  // Recomputes B⁻¹ and x_B = B⁻¹q from scratch; false if B is singular.
+  // Recomputes B⁻¹ and x_B = B⁻¹q from scratch (partial-pivoting LU); false if B is
+  // numerically singular (non-finite inverse). Ill-conditioned bases are accepted: the
+  // final residual check decides.
   bool refactor(DenseMatrix& Binv, Vector& xB) const {
-    const Eigen::FullPivLU<DenseMatrix> lu(basis_matrix());
-    if (!lu.isInvertible()) return false;
+    const Eigen::PartialPivLU<DenseMatrix> lu(basis_matrix());
     Binv = lu.inverse();
+    if (!Binv.allFinite()) return false;
     xB = Binv * q;
     return true;
   }
 
-  // Lexicographic minimum ratio over candidate rows (ratio key: [x_B, B⁻¹] rows / a_i).
+  // Lexicographic minimum ratio over candidate rows (key: rows of [x_B, B⁻¹] / a_i).
+  // Ties: tol·(1 + |best|) on the B⁻¹ columns; on the x_B ratios tol·(q_scale + |best|)
+  // with q_scale = min(1, ‖q‖∞), so that problems with tiny q (resting contact, where
+  // ‖q‖ ~ 1e-18) are not all ties.
   Index lexicographic_row(std::vector<Index> rows, const Vector& a, const Vector& xB, const DenseMatrix& Binv,
                           bool prefer_z0) const {
     for (Index col = -1; col < n && rows.size() > 1; ++col) {
       auto key = [&](Index i) { return (col < 0 ? xB(i) : Binv(i, col)) / a(i); };
       double best = std::numeric_limits<double>::infinity();
       for (Index i : rows) best = std::min(best, key(i));
+      const double t = tol * ((col < 0 ? q_scale : 1.0) + std::abs(best));
       std::vector<Index> keep;
       for (Index i : rows)
-        if (key(i) <= best + tol * (1.0 + std::abs(best))) keep.push_back(i);
+        if (key(i) <= best + t) keep.push_back(i);
       rows.swap(keep);
       if (col < 0 && prefer_z0)
         for (Index i : rows)
@@ -80,6 +87,7 @@ struct LemkeSolver::Impl {
 
   // Fills z, w, z_basic from the current basis; checks the residual.
   void extract_solution() {
+    // (res_tol = 0 when q = 0: then z = 0 is exact and the residual is 0.)
     result.z = Vector::Zero(n);
     DenseMatrix Binv;
     Vector xB;
@@ -187,8 +195,9 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
   m.tol = m.settings.pivot_tolerance > 0 ? m.settings.pivot_tolerance
                                          : 10.0 * std::max<Index>(n, 1) * std::numeric_limits<double>::epsilon() *
                                                std::max(1.0, mnorm);
-  m.res_tol = m.settings.residual_tolerance > 0 ? m.settings.residual_tolerance
-                                                : 1e-9 * std::max(1.0, n ? q.lpNorm<Eigen::Infinity>() : 0.0);
+  const double qnorm = n ? q.lpNorm<Eigen::Infinity>() : 0.0;
+  m.q_scale = std::min(1.0, qnorm);
+  m.res_tol = m.settings.residual_tolerance > 0 ? m.settings.residual_tolerance : 1e-9 * qnorm;
   m.max_pivots = m.settings.max_pivots > 0 ? m.settings.max_pivots
                                            : 50L * (n + 1) + (n < 23 ? (1L << n) : 10'000'000L);
   m.max_pivots = std::min(m.max_pivots, 10'000'000L);

@@ -38,10 +38,12 @@ constexpr const char* to_string(LcpStatus s) {
 struct LemkeSettings {
   /// Pivot limit; 0 means 50·(n + 1) + 2ⁿ capped at 10⁷ (enough for Murty's examples).
   long max_pivots = 0;
-  /// Zero tolerance of the ratio tests; 0 means 10·n·ε·max(1, ‖M‖∞) (scaled as in Drake's
-  /// MobyLCP, which follows Cottle, Pang & Stone).
+  /// Zero tolerance of the pivot entries and of the B⁻¹ tie-breaks; 0 means
+  /// 10·n·ε·max(1, ‖M‖∞) (scaled as in Drake's MobyLCP). Ties of the x_B ratios are
+  /// scaled by min(1, ‖q‖∞) as well (see lemke_dense.cpp), so that tiny q (resting contact) works.
   double pivot_tolerance = 0.0;
-  /// Accepted complementarity residual max|min(z, w)|; 0 means 1e-9·max(1, ‖q‖∞).
+  /// Accepted complementarity residual max|min(z, w)|; 0 means 1e-9·‖q‖∞ (relative to q,
+  /// as the Siconos error ‖z − max(0, z − w)‖₂/‖q‖₂ is).
   double residual_tolerance = 0.0;
   /// Refactorize the basis from scratch every this many pivots (drift control).
   int refactor_interval = 50;
