@@ -113,16 +113,18 @@ MatrixEntries build(Index rows, Index cols, std::vector<Triplet>& entries) {
   return MatrixEntries{rows, cols, std::move(entries)};
 }
 
+// Reads a size and checks it against the expected one ("dimension mismatch" otherwise).
+void expect_size(SiconosTokenizer& tok, const std::string& what, const std::string& noun, Index expected) {
+  const long long v = tok.integer(what, 0, kMaxIndex);
+  if (v != expected)
+    tok.fail("dimension mismatch: " + what.substr(0, what.find(' ')) + " declares " + std::to_string(v) + " " +
+             noun + ", expected " + std::to_string(expected));
+}
+
 // Storage 0: "size0<TAB>size1" repeated, then size0*size1 values in column-major order.
 MatrixEntries read_dense(SiconosTokenizer& tok, Index rows, Index cols) {
-  const long long r = tok.integer("dense row count", 0, kMaxIndex);
-  if (r != rows)
-    tok.fail("dimension mismatch: dense header declares " + std::to_string(r) + " rows, expected " +
-             std::to_string(rows));
-  const long long c = tok.integer("dense column count", 0, kMaxIndex);
-  if (c != cols)
-    tok.fail("dimension mismatch: dense header declares " + std::to_string(c) + " columns, expected " +
-             std::to_string(cols));
+  expect_size(tok, "dense row count", "rows", rows);
+  expect_size(tok, "dense column count", "columns", cols);
   std::vector<Triplet> entries;
   for (Index j = 0; j < cols; ++j)
     for (Index i = 0; i < rows; ++i) {
@@ -297,14 +299,8 @@ MatrixEntries read_numerics_matrix(SiconosTokenizer& tok, Index rows, Index cols
   const long long storage = tok.parse_integer(t, "matrix storage type", -kMaxIndex, kMaxIndex);
   if (storage < 0 || storage > 2)
     tok.fail("unknown matrix storage type " + t + " (expected 0 dense, 1 sparse-block or 2 CSparse)");
-  const long long size0 = tok.integer("matrix row count", 0, kMaxIndex);
-  if (size0 != rows)
-    tok.fail("dimension mismatch: matrix has " + std::to_string(size0) + " rows, expected " +
-             std::to_string(rows));
-  const long long size1 = tok.integer("matrix column count", 0, kMaxIndex);
-  if (size1 != cols)
-    tok.fail("dimension mismatch: matrix has " + std::to_string(size1) + " columns, expected " +
-             std::to_string(cols));
+  expect_size(tok, "matrix row count", "rows", rows);
+  expect_size(tok, "matrix column count", "columns", cols);
   switch (storage) {
     case 0:
       return read_dense(tok, rows, cols);
