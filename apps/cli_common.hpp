@@ -36,6 +36,10 @@ struct Command {
 
 /// `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--solution OUT.json] [--json]`.
 Command add_qp_command(CLI::App& parent);
+/// `lcprelax lcp FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]`.
+Command add_lcp_command(CLI::App& parent);
+/// `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]`.
+Command add_fc2d_command(CLI::App& parent);
 
 /// Adds the `--json` flag every subcommand accepts.
 void add_json_flag(CLI::App& command, bool& json);

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const std::vector<Command> commands = {
       add_qp_command(app),
+      add_lcp_command(app),
+      add_fc2d_command(app),
   };
 
   try {

@@ -1,61 +1,23 @@
 // `lcprelax qp` end to end (DESIGN §4): runs the built executable on HS21 and on bad input,
 // parses its JSON, and checks exit codes (0 solved, 2 bad input with nothing on stdout).
+#include "cli_support.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 namespace {
 
-namespace fs = std::filesystem;
-const std::string kCli = LCPRELAX_CLI;
-const std::string kData = LCPRELAX_TEST_DATA_DIR;
-
-struct CliRun {
-  int exit_code = -1;
-  std::string out;  ///< stdout (stderr goes to err_file)
-  std::string err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-std::string temp_path(const std::string& name) {
-  return (fs::temp_directory_path() / ("lcprelax_cli_qp_" + std::to_string(::getpid()) + "_" + name)).string();
-}
-
-/// Runs `lcprelax <args>` through the shell; stdout is captured by popen, stderr by a file.
-CliRun run_cli(const std::string& args) {
-  const std::string err_file = temp_path("stderr.txt");
-  const std::string command = "'" + kCli + "' " + args + " 2>'" + err_file + "'";
-  CliRun r;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return r;
-  char buffer[4096];
-  std::size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, got);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = slurp(err_file);
-  fs::remove(err_file);
-  return r;
-}
+using namespace lcprelax::testing_support;
 
 const std::string kHs21 = kData + "/maros_meszaros/HS21.qps";
 
 class CliQp : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (kCli.empty() || !fs::exists(kCli)) GTEST_SKIP() << "lcprelax executable not built";
+    if (kCli.empty() || !fs::exists(kCli)) GTEST_FAIL() << "lcprelax executable not built";
   }
 };
 

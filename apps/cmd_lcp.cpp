@@ -1,0 +1,105 @@
+// `lcprelax lcp FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` and
+// `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` (DESIGN §4):
+// Siconos numerics problems, errors as Siconos defines them (io/siconos_errors.hpp).
+// lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds; OUT: z, w.
+// fc2d JSON: status, contacts, error, seconds; OUT: r, u (u = W r + q). fc2d is solved as
+// the LCP of lcp/fc2d_lcp.hpp; with --solver ipm that LCP must be monotone, which it
+// generally is not: the status then reports the failure.
+#include "cli_common.hpp"
+
+#include <lcprelax/io/siconos_errors.hpp>
+#include <lcprelax/io/siconos_reader.hpp>
+#include <lcprelax/lcp/fc2d_lcp.hpp>
+#include <lcprelax/lcp/lcp_ipm.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/sparse/errors.hpp>
+
+#include <iostream>
+#include <memory>
+
+namespace lcprelax::cli {
+namespace {
+
+struct LcpOptions {
+  std::string file;
+  std::string solver = "lemke";
+  std::string solution;
+  bool json = false;
+};
+
+LcpResult solve(const SparseMatrix& M, const Vector& q, const std::string& solver) {
+  if (solver == "ipm") return solve_lcp_ipm(M, q);
+  LemkeSolver lemke;
+  lemke.setup(M, q);
+  return lemke.solve();
+}
+
+void report(const LcpOptions& o, Json j, const LcpResult& r) {
+  if (o.json) {
+    print_json(j);
+    return;
+  }
+  for (const auto& [key, value] : j.items()) std::cout << key << ": " << value.dump() << '\n';
+  if (r.info.status != LcpStatus::solved) std::cout << "message: " << r.info.message << '\n';
+}
+
+int run_lcp(const LcpOptions& o) {
+  const io::LcpData d = io::read_siconos_lcp(o.file);
+  const Stopwatch watch;
+  const LcpResult r = solve(d.M, d.q, o.solver);
+  const double seconds = watch.seconds();
+  const bool ok = r.info.status == LcpStatus::solved;
+  Json j;
+  j["status"] = to_string(r.info.status);
+  j["n"] = d.q.size();
+  j["error"] = ok ? number_or_null(io::lcp_error(d.M, d.q, r.z)) : Json(nullptr);
+  j[o.solver == "ipm" ? "iterations" : "pivots"] = r.info.pivots;
+  j["seconds"] = seconds;
+  if (!o.solution.empty()) write_json_file(o.solution, Json{{"z", array_or_nulls(r.z)}, {"w", array_or_nulls(r.w)}});
+  report(o, j, r);
+  return ok ? kExitSuccess : kExitSolveFailed;
+}
+
+int run_fc2d(const LcpOptions& o) {
+  const io::Fc2dData d = io::read_siconos_fc2d(o.file);
+  const Stopwatch watch;
+  const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
+  const LcpResult r = solve(lcp.M, lcp.q, o.solver);
+  Vector reactions, velocities;
+  const bool ok = r.info.status == LcpStatus::solved;
+  if (r.z.size() == lcp.q.size()) fc2d_from_lcp(r.z, d.W, d.q, reactions, velocities);
+  const double seconds = watch.seconds();
+  Json j;
+  j["status"] = to_string(r.info.status);
+  j["contacts"] = d.contacts;
+  j["error"] = ok ? number_or_null(io::fc2d_error(d, reactions)) : Json(nullptr);
+  j["seconds"] = seconds;
+  if (!o.solution.empty())
+    write_json_file(o.solution, Json{{"r", array_or_nulls(reactions)}, {"u", array_or_nulls(velocities)}});
+  report(o, j, r);
+  return ok ? kExitSuccess : kExitSolveFailed;
+}
+
+Command add_command(CLI::App& parent, const char* name, const char* help, int (*run)(const LcpOptions&)) {
+  auto options = std::make_shared<LcpOptions>();
+  CLI::App* app = parent.add_subcommand(name, help);
+  app->add_option("file", options->file, "Siconos numerics .dat file")->required();
+  app->add_option("--solver", options->solver, "lemke (default) or ipm (monotone LCPs)")
+      ->check(CLI::IsMember({"lemke", "ipm"}))
+      ->capture_default_str();
+  app->add_option("--solution", options->solution, "Write the solution to this JSON file");
+  add_json_flag(*app, options->json);
+  return Command{app, [options, run] { return run(*options); }};
+}
+
+}  // namespace
+
+Command add_lcp_command(CLI::App& parent) {
+  return add_command(parent, "lcp", "Solve a Siconos LCP file (0 ≤ z ⊥ Mz + q ≥ 0)", run_lcp);
+}
+
+Command add_fc2d_command(CLI::App& parent) {
+  return add_command(parent, "fc2d", "Solve a Siconos 2-D frictional contact file as an LCP", run_fc2d);
+}
+
+}  // namespace lcprelax::cli

@@ -1,0 +1,52 @@
+#pragma once
+// Runs the built `lcprelax` executable for the CLI tests: stdout captured by popen, stderr
+// by a temporary file, and the exit code (DESIGN §4: 0 solved, 1 solve failed, 2 bad input).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace lcprelax::testing_support {
+
+namespace fs = std::filesystem;
+
+inline const std::string kCli = LCPRELAX_CLI;
+inline const std::string kData = LCPRELAX_TEST_DATA_DIR;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;  ///< stdout (stderr goes to err_file)
+  std::string err;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+inline std::string temp_path(const std::string& name) {
+  return (fs::temp_directory_path() / ("lcprelax_cli_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+/// Runs `lcprelax <args>` through the shell; stdout is captured by popen, stderr by a file.
+inline CliRun run_cli(const std::string& args) {
+  const std::string err_file = temp_path("stderr.txt");
+  const std::string command = "'" + kCli + "' " + args + " 2>'" + err_file + "'";
+  CliRun r;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return r;
+  char buffer[4096];
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.out.append(buffer, got);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.err = slurp(err_file);
+  fs::remove(err_file);
+  return r;
+}
+
+}  // namespace lcprelax::testing_support

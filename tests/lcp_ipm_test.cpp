@@ -1,0 +1,52 @@
+// LCPs through the interior-point QP (lcp/lcp_ipm.hpp): on monotone P-matrix LCPs
+// (M = BBᵀ + I + S, S skew; unique solution) it agrees with Lemke; on a non-monotone
+// LCP (M + Mᵀ indefinite) it does not claim a solution it has not found.
+#include <lcprelax/lcp/lcp_ipm.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace lcprelax {
+namespace {
+
+TEST(LcpIpm, AgreesWithLemkeOnMonotoneLcps) {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> N(0.0, 1.0);
+    const Index n = 15;
+    const DenseMatrix B = DenseMatrix::NullaryExpr(n, n, [&] { return N(rng); });
+    DenseMatrix S = DenseMatrix::NullaryExpr(n, n, [&] { return N(rng); });
+    S = 0.5 * (S - S.transpose()).eval();
+    const DenseMatrix M = B * B.transpose() + DenseMatrix::Identity(n, n) + S;
+    const Vector q = Vector::NullaryExpr(n, [&] { return N(rng); });
+    const SparseMatrix Ms = M.sparseView();
+    const LcpResult ipm = solve_lcp_ipm(Ms, q);
+    ASSERT_EQ(ipm.info.status, LcpStatus::solved) << ipm.info.message << " seed " << seed;
+    LemkeSolver lemke;
+    lemke.setup(Ms, q);
+    const LcpResult& lr = lemke.solve();
+    ASSERT_EQ(lr.info.status, LcpStatus::solved);
+    EXPECT_LE((ipm.z - lr.z).lpNorm<Eigen::Infinity>(), 1e-6) << "seed " << seed;
+    EXPECT_LE(ipm.info.complementarity, 1e-9 * std::max(1.0, q.lpNorm<Eigen::Infinity>()));
+  }
+}
+
+// M = [[0, 1], [−3, 0]] + diag(−1, 0): M + Mᵀ = [[−2, −2], [−2, 0]] is indefinite.
+TEST(LcpIpm, NonMonotoneIsNotReportedSolvedWithoutASolution) {
+  const DenseMatrix M = (DenseMatrix(2, 2) << -1, 1, -3, 0).finished();
+  const Vector q = (Vector(2) << -1, 2).finished();
+  const LcpResult r = solve_lcp_ipm(M.sparseView(), q);
+  if (r.info.status == LcpStatus::solved) {
+    const Vector w = M * r.z + q;
+    EXPECT_GE(r.z.minCoeff(), 0.0);
+    EXPECT_GE(w.minCoeff(), -1e-9);
+    EXPECT_LE(r.z.cwiseMin(w).cwiseAbs().maxCoeff(), 1e-9);
+  } else {
+    EXPECT_FALSE(r.info.message.empty());
+  }
+}
+
+}  // namespace
+}  // namespace lcprelax
