@@ -11,6 +11,7 @@
 // and then  ds = dv + r (lower), ds = −dv − r (upper), dz = (−r_c − z∘ds)/s.
 #include "standard_form.hpp"
 
+#include <array>
 #include <vector>
 
 namespace lcprelax::detail {
@@ -52,8 +53,9 @@ struct Iterate {
   double max_step() const;
   /// Signed multipliers ζ of rows (mg) and bounds (n).
   void signed_multipliers(Index mg, Index n, Vector& zg, Vector& zb) const;
-  std::vector<Side*> sides() { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
-  std::vector<const Side*> sides() const { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
+  /// The four sides, without allocating (called several times per iteration).
+  std::array<Side*, 4> sides() { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
+  std::array<const Side*, 4> sides() const { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
 };
 
 }  // namespace lcprelax::detail
