@@ -6,3 +6,28 @@ find_dependency(SuiteSparse)
 if(LCPRELAX_WITH_OPENMP)
   find_dependency(OpenMP)
 endif()
+# Cairo (optional, scene pictures), through pkg-config as the imported target
+# PkgConfig::CAIRO. In lcprelax's own build LCPRELAX_WITH_CAIRO enables the search and a
+# missing Cairo only disables pictures. For a consumer of the installed package (this file
+# then sits beside lcprelaxTargets.cmake) Cairo is re-found, and required, exactly when the
+# exported targets link it.
+if(EXISTS "${CMAKE_CURRENT_LIST_DIR}/lcprelaxTargets.cmake")
+  file(STRINGS "${CMAKE_CURRENT_LIST_DIR}/lcprelaxTargets.cmake" _lcprelax_uses_cairo REGEX "PkgConfig::CAIRO")
+  if(_lcprelax_uses_cairo AND NOT TARGET PkgConfig::CAIRO)
+    find_dependency(PkgConfig)
+    pkg_check_modules(CAIRO QUIET IMPORTED_TARGET cairo)
+    if(NOT CAIRO_FOUND)
+      set(${CMAKE_FIND_PACKAGE_NAME}_NOT_FOUND_MESSAGE "lcprelax was built with Cairo, but pkg-config cannot find cairo")
+      set(${CMAKE_FIND_PACKAGE_NAME}_FOUND FALSE)
+      return()
+    endif()
+  endif()
+elseif(LCPRELAX_WITH_CAIRO)
+  find_package(PkgConfig QUIET)
+  if(PkgConfig_FOUND)
+    pkg_check_modules(CAIRO QUIET IMPORTED_TARGET cairo)
+  endif()
+  if(NOT TARGET PkgConfig::CAIRO)
+    message(STATUS "lcprelax: Cairo not found (pkg-config cairo), pictures disabled")
+  endif()
+endif()

@@ -8,4 +8,5 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update
 $SUDO apt-get install -y --no-install-recommends \
   build-essential cmake libeigen3-dev libsuitesparse-dev libgtest-dev libgmock-dev \
-  libbenchmark-dev nlohmann-json3-dev libcli11-dev coinor-clp
+  libbenchmark-dev nlohmann-json3-dev libcli11-dev coinor-clp \
+  pkg-config libcairo2-dev

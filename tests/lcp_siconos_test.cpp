@@ -1,7 +1,7 @@
-// Dense Lemke on the Siconos numerics test problems (tests/data/siconos, copied from the
-// project's shared data), with errors computed as Siconos defines them (io/siconos_errors).
-// The 667-contact granular fc2d problem is not run here: the dense path needs minutes on it
-// (2,668 unknowns, O(n²) per pivot); it waits for the sparse Lemke path.
+// Lemke, dense and sparse, on the Siconos numerics test problems (tests/data/siconos,
+// copied from the project's shared data), with errors computed as Siconos defines them
+// (io/siconos_errors). The 667-contact granular fc2d problem is solved by the sparse path
+// only: the dense one needs minutes on it (2,668 unknowns, O(n²) per pivot).
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
 #include <lcprelax/lcp/fc2d_lcp.hpp>
@@ -9,23 +9,38 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
+#include <tuple>
 
 namespace lcprelax {
 namespace {
 
 const std::string kDir = std::string(LCPRELAX_TEST_DATA_DIR) + "/siconos/";
 
-class SiconosLcp : public ::testing::TestWithParam<std::string> {};
+LemkeSettings with_method(LemkeMethod method) {
+  LemkeSettings s;
+  s.method = method;
+  return s;
+}
+
+using NameAndMethod = std::tuple<std::string, LemkeMethod>;
+std::string name_and_method(const ::testing::TestParamInfo<NameAndMethod>& info) {
+  return std::get<0>(info.param) + "_" + to_string(std::get<1>(info.param));
+}
+
+class SiconosLcp : public ::testing::TestWithParam<NameAndMethod> {};
 
 TEST_P(SiconosLcp, SolvedToSiconosErrorOrRightStatus) {
-  const io::LcpData d = io::read_siconos_lcp(kDir + "lcp/" + GetParam() + ".dat");
-  LemkeSolver solver;
+  const auto& [name, method] = GetParam();
+  const io::LcpData d = io::read_siconos_lcp(kDir + "lcp/" + name + ".dat");
+  LemkeSolver solver(with_method(method));
   solver.setup(d.M, d.q);
   const LcpResult& r = solver.solve();
-  std::printf("%s: n = %ld, %s, %ld pivots\n", GetParam().c_str(), static_cast<long>(d.q.size()),
-              to_string(r.info.status), r.info.pivots);
-  if (GetParam() == "lcp_CPS_3") {
+  std::printf("%s (%s): n = %ld, %s, %ld pivots\n", name.c_str(), to_string(r.info.method),
+              static_cast<long>(d.q.size()), to_string(r.info.status), r.info.pivots);
+  EXPECT_EQ(r.info.method, method);
+  if (name == "lcp_CPS_3") {
     // Bimatrix game (Cottle, Pang & Stone, example 4.4.23): M ≥ 0 with zero diagonal
     // blocks is copositive but not copositive-plus, so Lemke's method with the standard
     // covering vector may end on a ray, and does here.
@@ -36,19 +51,28 @@ TEST_P(SiconosLcp, SolvedToSiconosErrorOrRightStatus) {
   EXPECT_LE(io::lcp_error(d.M, d.q, r.z), 1e-10);
 }
 
-INSTANTIATE_TEST_SUITE_P(All, SiconosLcp,
-                         ::testing::Values("lcp_CPS_1", "lcp_CPS_2", "lcp_CPS_3", "lcp_CPS_4", "lcp_CPS_5",
-                                           "lcp_deudeu", "lcp_deudeu_block", "lcp_exp_murty", "lcp_mmc",
-                                           "lcp_ortiz", "lcp_tobenna", "lcp_trivial"));
+const auto kMethods = ::testing::Values(LemkeMethod::dense, LemkeMethod::sparse);
 
-class SiconosFc2d : public ::testing::TestWithParam<std::string> {};
+INSTANTIATE_TEST_SUITE_P(All, SiconosLcp,
+                         ::testing::Combine(::testing::Values("lcp_CPS_1", "lcp_CPS_2", "lcp_CPS_3", "lcp_CPS_4",
+                                                              "lcp_CPS_5", "lcp_deudeu", "lcp_deudeu_block",
+                                                              "lcp_exp_murty", "lcp_mmc", "lcp_ortiz",
+                                                              "lcp_tobenna", "lcp_trivial"),
+                                            kMethods),
+                         name_and_method);
+
+class SiconosFc2d : public ::testing::TestWithParam<NameAndMethod> {};
 
 TEST_P(SiconosFc2d, SolvedAsAnLcpToSiconosError) {
-  const io::Fc2dData d = io::read_siconos_fc2d(kDir + "fc2d/" + GetParam() + ".dat");
+  const auto& [name, method] = GetParam();
+  const io::Fc2dData d = io::read_siconos_fc2d(kDir + "fc2d/" + name + ".dat");
   const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
-  LemkeSolver solver;
+  LemkeSolver solver(with_method(method));
   solver.setup(lcp.M, lcp.q);
   const LcpResult& r = solver.solve();
+  std::printf("%s (%s): %ld contacts, %s, %ld pivots, %ld refactorizations, %.3f s\n", name.c_str(),
+              to_string(r.info.method), static_cast<long>(d.contacts), to_string(r.info.status), r.info.pivots,
+              r.info.refactorizations, r.info.seconds);
   ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
   Vector reactions, velocities;
   fc2d_from_lcp(r.z, d.W, d.q, reactions, velocities);
@@ -62,8 +86,16 @@ TEST_P(SiconosFc2d, SolvedAsAnLcpToSiconosError) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, SiconosFc2d,
-                         ::testing::Values("FC2D_SliderCrankLagrangian00000", "FrictionContactProblem00031",
-                                           "FrictionContactProblem00071", "FrictionContactProblem00374"));
+                         ::testing::Combine(::testing::Values("FC2D_SliderCrankLagrangian00000",
+                                                              "FrictionContactProblem00031",
+                                                              "FrictionContactProblem00071",
+                                                              "FrictionContactProblem00374"),
+                                            kMethods),
+                         name_and_method);
+INSTANTIATE_TEST_SUITE_P(Granular, SiconosFc2d,
+                         ::testing::Combine(::testing::Values("fc2d_granularflowonwall_00667_00000"),
+                                            ::testing::Values(LemkeMethod::sparse)),
+                         name_and_method);
 
 // The LCP formulation of fc2d: a 1-contact problem whose LCP is the seeds' block LCP up to
 // the normal row: W = I, q = (−1, v), μ = 0.5 → r_n = 1, friction −sign(v)·min(|v|, 0.5).

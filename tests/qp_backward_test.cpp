@@ -165,8 +165,12 @@ TEST(QpBackwardStructure, InactiveBoundsHaveZeroGradient) {
   ASSERT_EQ(r.info.status, QpStatus::solved);
   const QpGradient g = solver.backward(c.wx);
   for (Index i = 0; i < r.z.size(); ++i) {
-    if (r.z(i) <= 1e-6) EXPECT_NEAR(g.du(i), 0.0, 1e-6) << "row " << i;
-    if (r.z(i) >= -1e-6) EXPECT_NEAR(g.dl(i), 0.0, 1e-6) << "row " << i;
+    if (r.z(i) <= 1e-6) {
+      EXPECT_NEAR(g.du(i), 0.0, 1e-6) << "row " << i;
+    }
+    if (r.z(i) >= -1e-6) {
+      EXPECT_NEAR(g.dl(i), 0.0, 1e-6) << "row " << i;
+    }
   }
 }
 

@@ -35,17 +35,35 @@ constexpr const char* to_string(LcpStatus s) {
   return "unknown";
 }
 
+/// How Lemke's basis is factorized (lemke.hpp): dense explicit inverse (O(n²) memory,
+/// fast for small n) or sparse KLU LU with block updates (O(nnz) memory).
+enum class LemkeMethod { automatic, dense, sparse };
+
+constexpr const char* to_string(LemkeMethod m) {
+  switch (m) {
+    case LemkeMethod::automatic: return "automatic";
+    case LemkeMethod::dense: return "dense";
+    case LemkeMethod::sparse: return "sparse";
+  }
+  return "unknown";
+}
+
 struct LemkeSettings {
+  /// automatic: dense when n ≤ dense_max_n, else sparse.
+  LemkeMethod method = LemkeMethod::automatic;
+  /// Largest n solved densely by `automatic` (switch point measured by bench/bench_lemke).
+  int dense_max_n = 100;
   /// Pivot limit; 0 means 50·(n + 1) + 2ⁿ capped at 10⁷ (enough for Murty's examples).
   long max_pivots = 0;
-  /// Zero tolerance of the pivot entries and of the B⁻¹ tie-breaks; 0 means
-  /// 10·n·ε·max(1, ‖M‖∞) (scaled as in Drake's MobyLCP). Ties of the x_B ratios are
-  /// scaled by min(1, ‖q‖∞) as well (see lemke_dense.cpp), so that tiny q (resting contact) works.
+  /// Zero tolerance of the pivot entries and of the lexicographic ties; 0 means
+  /// 10·n·ε·max(1, ‖M‖∞) (scaled as in Drake's MobyLCP). The pivoting runs on q/‖q‖∞ (the
+  /// solution scales with q), so ties are scale-free and tiny q (resting contact) works.
   double pivot_tolerance = 0.0;
   /// Accepted complementarity residual max|min(z, w)|; 0 means 1e-9·‖q‖∞ (relative to q,
   /// as the Siconos error ‖z − max(0, z − w)‖₂/‖q‖₂ is).
   double residual_tolerance = 0.0;
-  /// Refactorize the basis from scratch every this many pivots (drift control).
+  /// Refactorize the basis from scratch every this many pivots (drift control; for the
+  /// sparse method also the largest Schur-complement update, memory n·interval doubles).
   int refactor_interval = 50;
   /// Covering vector d > 0 of the artificial variable (empty: all ones).
   Vector covering;
@@ -61,6 +79,8 @@ struct LcpInfo {
   double complementarity = std::numeric_limits<double>::quiet_NaN();  ///< max|min(z, w)|
   double seconds = 0.0;
   bool warm_started = false;  ///< the warm-start basis was complementary and feasible
+  LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
+  long refactorizations = 0;  ///< basis factorizations from scratch
 };
 
 struct LcpResult {

@@ -1,5 +1,5 @@
 #pragma once
-// Lemke's complementary pivoting method with lexicographic anti-cycling (dense path).
+// Lemke's complementary pivoting method with lexicographic anti-cycling, dense or sparse.
 //
 // Method (Cottle, Pang & Stone, "The Linear Complementarity Problem", 1992, §4.4): with a
 // covering vector d > 0 and artificial z₀, start from the almost-complementary basis
@@ -7,8 +7,16 @@
 // complement of each leaving variable enter, until z₀ leaves (solved) or an entering
 // column has no positive entry (ray termination). Minimum-ratio ties are broken
 // lexicographically on the rows of [B⁻¹q, B⁻¹], which prevents cycling on degenerate
-// problems. The dense path keeps B⁻¹ explicitly (O(n²) per pivot, product-form update,
-// refactorized every refactor_interval pivots and at the end): meant for small n.
+// problems. Two factorizations of the basis (LemkeSettings::method):
+// - dense: B⁻¹ kept explicitly (O(n²) memory and work per pivot, product-form update,
+//   refactorized every refactor_interval pivots and at the end): for small n;
+// - sparse: KLU LU of the basis at the last refactorization plus a Schur-complement block
+//   update of the columns replaced since (Eldersveld & Saunders 1992), refactorized every
+//   refactor_interval replacements: memory O(nnz(LU) + n·refactor_interval), no dense n×n
+//   array. Rows of B⁻¹ for the tie-breaks are formed only for rows still tied after the
+//   ratio test (one transposed solve each).
+// `automatic` uses dense for n ≤ dense_max_n (the switch point measured by
+// bench/bench_lemke, README). Both give the same pivot sequence up to roundoff in ties.
 //
 // Warm start: a basis (which of z_i / w_i is basic) whose basic solution is feasible
 // solves in zero pivots; otherwise the solve starts cold.

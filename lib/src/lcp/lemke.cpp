@@ -1,8 +1,9 @@
-// Dense lexicographic Lemke (method, warm start and backward in lemke.hpp).
+// Lexicographic Lemke pivoting on a dense or sparse basis (method, warm start and
+// backward in lemke.hpp; the basis factorizations in lemke_basis.hpp).
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/sparse/errors.hpp>
 
-#include <Eigen/LU>
+#include "lemke_basis.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -16,67 +17,92 @@ struct LemkeSolver::Impl {
   LemkeSettings settings;
   Index n = 0;
   SparseMatrix M;
-  DenseMatrix Md;
-  Vector q, d;
+  Vector q_user;     // q as given
+  Vector q, d;       // q = q_user / q_norm: the pivoting runs on ‖q‖∞ = 1 (z scales with q)
+  double q_norm = 1.0;
   double tol = 0, res_tol = 0;
-  double q_scale = 1.0;  // min(1, ‖q‖∞): scale of the x_B ratio ties
   long max_pivots = 0;
   bool is_setup = false;
   std::vector<bool> warm;
   LcpResult result;
-  std::vector<Index> basic;               // variable per row: [0,n) w, [n,2n) z, 2n z0
-  Eigen::PartialPivLU<DenseMatrix> final_lu;  // of the final complementary basis
+  std::vector<Index> basic;  // variable per row: [0,n) w, [n,2n) z, 2n z0
+  std::unique_ptr<detail::LemkeBasis> basis;
+
+  void set_q(const Vector& q_in) {
+    q_user = q_in;
+    const double qn = q_in.size() ? q_in.lpNorm<Eigen::Infinity>() : 0.0;
+    q_norm = qn > 0 ? qn : 1.0;
+    q = q_in / q_norm;
+    res_tol = settings.residual_tolerance > 0 ? settings.residual_tolerance : 1e-9 * qn;
+  }
 
   Index z0() const { return 2 * n; }
   static Index complement(Index var, Index n) { return var < n ? var + n : var - n; }
 
-  void column(Index var, Eigen::Ref<Vector> out) const {
-    if (var < n) {
-      out.setZero();
-      out(var) = 1.0;
-    } else if (var < 2 * n) {
-      out = -Md.col(var - n);
-    } else {
-      out = -d;
+  void make_basis() {
+    const bool dense = settings.method == LemkeMethod::dense ||
+                       (settings.method == LemkeMethod::automatic && n <= settings.dense_max_n);
+    result.info.method = dense ? LemkeMethod::dense : LemkeMethod::sparse;
+    const detail::LemkeColumns cols{&M, &d, n};
+    basis = dense ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
+                  : detail::make_sparse_lemke_basis(cols, settings.refactor_interval);
+  }
+
+  // Factorizes the current basis and sets x_B = B⁻¹q with up to two steps of iterative
+  // refinement (r = q − B x_B; KLU's threshold pivoting and ill-conditioned bases of
+  // resting-contact problems with ‖q‖ ~ 1e-19 need them); false if B is singular.
+  bool refactor(Vector& xB) {
+    ++result.info.refactorizations;
+    if (!basis->refactor(basic)) return false;
+    xB = q;
+    basis->solve(xB);
+    if (!xB.allFinite()) return false;
+    const detail::LemkeColumns cols{&M, &d, n};
+    for (int step = 0; step < 2; ++step) {
+      Vector r = q;
+      for (Index k = 0; k < n; ++k) cols.add_to(basic[k], -xB(k), r);
+      if (r.lpNorm<Eigen::Infinity>() == 0.0) break;
+      basis->solve(r);
+      xB += r;
     }
-  }
-
-  DenseMatrix basis_matrix() const {
-    DenseMatrix B(n, n);
-    for (Index k = 0; k < n; ++k) column(basic[k], B.col(k));
-    return B;
-  }
-
-  // Recomputes B⁻¹ and x_B = B⁻¹q from scratch (partial-pivoting LU); false if B is
-  // numerically singular (non-finite inverse). Ill-conditioned bases are accepted: the
-  // final residual check decides.
-  bool refactor(DenseMatrix& Binv, Vector& xB) const {
-    const Eigen::PartialPivLU<DenseMatrix> lu(basis_matrix());
-    Binv = lu.inverse();
-    if (!Binv.allFinite()) return false;
-    xB = Binv * q;
-    return true;
+    return xB.allFinite();
   }
 
   // Lexicographic minimum ratio over candidate rows (key: rows of [x_B, B⁻¹] / a_i).
-  // Ties: tol·(1 + |best|) on the B⁻¹ columns; on the x_B ratios tol·(q_scale + |best|)
-  // with q_scale = min(1, ‖q‖∞), so that problems with tiny q (resting contact, where
-  // ‖q‖ ~ 1e-18) are not all ties.
-  Index lexicographic_row(std::vector<Index> rows, const Vector& a, const Vector& xB, const DenseMatrix& Binv,
-                          bool prefer_z0) const {
-    for (Index col = -1; col < n && rows.size() > 1; ++col) {
-      auto key = [&](Index i) { return (col < 0 ? xB(i) : Binv(i, col)) / a(i); };
+  // Ratios of a key column v tie with the minimum θ when v_i/a_i ≤ θ + t, with
+  // - for x_B: t = tol·(|θ| + 1/a_max), a_max = max a_i over the rows: relative to θ, plus
+  //   the roundoff of x_B seen through the largest pivot. q is normalized to ‖q‖∞ = 1,
+  //   so this is scale-free (resting contact has ‖q‖ ~ 1e-19). An absolute ratio
+  //   tolerance makes the ratios of size 1e-6 of stiff contact problems (‖M‖ ~ 1e3) ties
+  //   and breaks feasibility (granular fc2d problem);
+  // - for the B⁻¹ columns: t = tol·(1 + |θ|), absolute: on lcp_tobenna (bases with
+  //   pivots up to 4e6) anything tighter misses roundoff ties and cycles into a singular
+  //   basis.
+  // Rows of B⁻¹ are formed only for rows still tied after x_B (one transposed solve each
+  // on the sparse path).
+  Index lexicographic_row(std::vector<Index> rows, const Vector& a, const Vector& xB, bool prefer_z0) const {
+    double a_max = 0.0;
+    for (Index i : rows) a_max = std::max(a_max, a(i));
+    auto keep_minimal = [&](auto value, double absolute) {
       double best = std::numeric_limits<double>::infinity();
-      for (Index i : rows) best = std::min(best, key(i));
-      const double t = tol * ((col < 0 ? q_scale : 1.0) + std::abs(best));
+      for (Index i : rows) best = std::min(best, value(i) / a(i));
+      const double t = tol * (std::abs(best) + absolute);
       std::vector<Index> keep;
       for (Index i : rows)
-        if (key(i) <= best + t) keep.push_back(i);
+        if (value(i) / a(i) <= best + t) keep.push_back(i);
       rows.swap(keep);
-      if (col < 0 && prefer_z0)
-        for (Index i : rows)
-          if (basic[i] == z0()) return i;
-    }
+    };
+    keep_minimal([&](Index i) { return xB(i); }, 1.0 / a_max);
+    if (prefer_z0)
+      for (Index i : rows)
+        if (basic[i] == z0()) return i;
+    if (rows.size() == 1) return rows.front();
+    DenseMatrix inv_rows;  // column k: row rows[k] of B⁻¹
+    basis->inverse_rows(rows, inv_rows);
+    std::vector<Index> slot(static_cast<std::size_t>(n), -1);
+    for (std::size_t k = 0; k < rows.size(); ++k) slot[rows[k]] = static_cast<Index>(k);
+    for (Index col = 0; col < n && rows.size() > 1; ++col)
+      keep_minimal([&](Index i) { return inv_rows(col, slot[i]); }, 1.0);
     return rows.front();
   }
 
@@ -85,31 +111,29 @@ struct LemkeSolver::Impl {
     result.info.message = message;
   }
 
-  // Fills z, w, z_basic from the current basis; checks the residual.
+  // Fills z, w, z_basic from a fresh factorization of the current basis (kept for
+  // backward()); checks the residual.
   void extract_solution() {
     // (res_tol = 0 when q = 0: then z = 0 is exact and the residual is 0.)
     result.z = Vector::Zero(n);
-    DenseMatrix Binv;
     Vector xB;
-    if (!refactor(Binv, xB)) return finish(LcpStatus::numerical_error, "final basis is singular");
+    if (!refactor(xB)) return finish(LcpStatus::numerical_error, "final basis is singular");
     result.z_basic.assign(n, false);
     for (Index k = 0; k < n; ++k)
       if (basic[k] >= n && basic[k] < 2 * n) {
-        result.z(basic[k] - n) = std::max(xB(k), 0.0);
+        result.z(basic[k] - n) = std::max(xB(k), 0.0) * q_norm;
         result.z_basic[basic[k] - n] = true;
       }
-    result.w = M * result.z + q;
+    result.w = M * result.z + q_user;
     result.info.complementarity = n ? result.z.cwiseMin(result.w).cwiseAbs().maxCoeff() : 0.0;
-    final_lu.compute(basis_matrix());
     if (result.info.complementarity <= res_tol) finish(LcpStatus::solved, "solved");
     else finish(LcpStatus::numerical_error, "complementarity residual above tolerance after refactorization");
   }
 
   bool try_warm_start() {
     for (Index i = 0; i < n; ++i) basic[i] = warm[i] ? n + i : i;
-    DenseMatrix Binv;
     Vector xB;
-    if (!refactor(Binv, xB) || xB.minCoeff() < -tol) return false;
+    if (!refactor(xB) || xB.minCoeff() < -tol) return false;
     extract_solution();
     result.info.warm_started = result.info.status == LcpStatus::solved;
     return result.info.warm_started;
@@ -123,44 +147,40 @@ struct LemkeSolver::Impl {
       result.info.complementarity = 0.0;
       return finish(LcpStatus::solved, "empty problem");
     }
+    make_basis();
     if (!warm.empty() && try_warm_start()) return;
     for (Index i = 0; i < n; ++i) basic[i] = i;
     if (q.minCoeff() >= 0) return extract_solution();  // z = 0 solves it
 
-    DenseMatrix Binv = DenseMatrix::Identity(n, n);
-    Vector xB = q, a(n);
+    Vector xB;
+    if (!refactor(xB)) return finish(LcpStatus::numerical_error, "identity basis failed to factorize");
+    Vector a(n);
     // z₀ enters at the most negative q_i/d_i (lexicographically on [q, I]/d).
     Index entering = z0();
-    column(entering, a);
+    basis->solve_column(entering, a);  // = −d
     std::vector<Index> rows(n);
     for (Index i = 0; i < n; ++i) rows[i] = i;
-    const Vector neg_a = -a;
-    Index r = lexicographic_row(rows, neg_a, xB, Binv, false);
+    Index r = lexicographic_row(rows, -a, xB, false);
     for (long pivot = 0;; ++pivot) {
-      // Pivot on (r, entering): product-form update of B⁻¹ and x_B.
+      // Pivot on (r, entering): update the factorization and x_B.
+      const bool updated = basis->replace(r, a);
       const double ar = a(r);
-      Binv.row(r) /= ar;
       xB(r) /= ar;
       for (Index i = 0; i < n; ++i)
-        if (i != r && a(i) != 0.0) {
-          Binv.row(i) -= a(i) * Binv.row(r);
-          xB(i) -= a(i) * xB(r);
-        }
+        if (i != r && a(i) != 0.0) xB(i) -= a(i) * xB(r);
       const Index leaving = basic[r];
       basic[r] = entering;
       result.info.pivots = pivot + 1;
       if (leaving == z0()) return extract_solution();
       if (result.info.pivots >= max_pivots) return finish(LcpStatus::pivot_limit, "pivot limit reached");
-      if (result.info.pivots % settings.refactor_interval == 0 && !refactor(Binv, xB))
-        return finish(LcpStatus::numerical_error, "basis became singular");
+      if (!updated && !refactor(xB)) return finish(LcpStatus::numerical_error, "basis became singular");
       entering = complement(leaving, n);
-      column(entering, a);
-      a = Binv * a;
+      basis->solve_column(entering, a);
       rows.clear();
       for (Index i = 0; i < n; ++i)
         if (a(i) > tol) rows.push_back(i);
       if (rows.empty()) return finish(LcpStatus::ray_termination, "ray termination: no solution found by Lemke");
-      r = lexicographic_row(rows, a, xB, Binv, true);
+      r = lexicographic_row(rows, a, xB, true);
     }
   }
 };
@@ -188,16 +208,15 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
   m.n = n;
   m.M = M;
   m.M.makeCompressed();
-  m.Md = DenseMatrix(M);
-  m.q = q;
+  m.set_q(q);
   m.d = m.settings.covering.size() ? m.settings.covering : Vector::Ones(n);
-  const double mnorm = n ? m.Md.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
+  Vector row_sums = Vector::Zero(n);
+  for (Index j = 0; j < m.M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(m.M, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
+  const double mnorm = n ? row_sums.maxCoeff() : 0.0;
   m.tol = m.settings.pivot_tolerance > 0 ? m.settings.pivot_tolerance
                                          : 10.0 * std::max<Index>(n, 1) * std::numeric_limits<double>::epsilon() *
                                                std::max(1.0, mnorm);
-  const double qnorm = n ? q.lpNorm<Eigen::Infinity>() : 0.0;
-  m.q_scale = std::min(1.0, qnorm);
-  m.res_tol = m.settings.residual_tolerance > 0 ? m.settings.residual_tolerance : 1e-9 * qnorm;
   m.max_pivots = m.settings.max_pivots > 0 ? m.settings.max_pivots
                                            : 50L * (n + 1) + (n < 23 ? (1L << n) : 10'000'000L);
   m.max_pivots = std::min(m.max_pivots, 10'000'000L);
@@ -208,7 +227,7 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
 void LemkeSolver::update_q(const Vector& q) {
   if (!impl_->is_setup) throw std::logic_error("LemkeSolver::update_q before setup");
   if (q.size() != impl_->n || !q.allFinite()) throw InputError("LCP: update_q needs a finite q of size n");
-  impl_->q = q;
+  impl_->set_q(q);
 }
 
 void LemkeSolver::warm_start(const std::vector<bool>& z_basic) {
@@ -242,7 +261,8 @@ LcpGradient LemkeSolver::backward(const Vector& dl_dz) const {
     Vector gb = Vector::Zero(m.n);
     for (Index k = 0; k < m.n; ++k)
       if (m.basic[k] >= m.n && m.basic[k] < 2 * m.n) gb(k) = dl_dz(m.basic[k] - m.n);
-    g.dq = m.final_lu.transpose().solve(gb);  // λ = B⁻ᵀ g
+    m.basis->solve_transposed(gb);  // λ = B⁻ᵀ g, with the final factorization
+    g.dq = gb;
   }
   for (Index j = 0; j < g.dM.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(g.dM, j); it; ++it) it.valueRef() = g.dq(it.row()) * m.result.z(j);

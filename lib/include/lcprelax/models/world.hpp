@@ -1,0 +1,91 @@
+#pragma once
+// The 2-D rigid-body world shared by collision, time stepping, scenes and learning.
+//
+// Conventions (SI units; DESIGN §3):
+// - A body's configuration is (x, y, θ): the world position of its centre of mass (m) and
+//   its rotation angle (rad, counter-clockwise). Its velocity is (vx, vy, ω) (m/s, rad/s).
+// - Polygon vertices are given in the body frame, counter-clockwise, with the centroid at
+//   the origin (so that (x, y) is the centre of mass); 3 to 12 vertices, strictly convex.
+// - A world point of a body: p = (x, y) + R(θ) v, R(θ) = [[cos θ, −sin θ], [sin θ, cos θ]].
+// - Static shapes (half-planes, segments, static polygons) have no degrees of freedom.
+// - Contact normals point from body b to body a: a positive normal impulse λn pushes a
+//   along +normal and b along −normal. The gap φ is the signed distance along the normal
+//   (m), negative when the shapes overlap.
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace lcprelax {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+struct Polygon {
+  std::vector<Vec2> vertices;  ///< body frame, counter-clockwise, centroid at the origin (m)
+};
+
+struct RigidBody {
+  Polygon shape;
+  double mass = 1.0;     ///< kg (> 0 unless is_static)
+  double inertia = 1.0;  ///< kg·m² about the centre of mass (> 0 unless is_static)
+  Vec3 pose = Vec3::Zero();      ///< (x, y, θ)
+  Vec3 velocity = Vec3::Zero();  ///< (vx, vy, ω)
+  int material = 0;              ///< index into the friction table
+  bool is_static = false;        ///< static polygons never move and have no unknowns
+};
+
+/// Static half-plane: free space is {p : normal·p ≥ offset}, solid below it.
+struct HalfPlane {
+  Vec2 normal{0.0, 1.0};  ///< unit, pointing out of the solid into free space
+  double offset = 0.0;    ///< m
+  int material = 0;
+};
+
+/// Static two-sided segment of zero thickness (container walls, ledges).
+struct Segment {
+  Vec2 a{0.0, 0.0}, b{1.0, 0.0};  ///< end points (m)
+  int material = 0;
+};
+
+/// Friction coefficients: μ for a pair of materials, `default_mu` where no pair is given.
+struct FrictionTable {
+  double default_mu = 0.5;
+  struct Pair {
+    int material_a = 0, material_b = 0;
+    double mu = 0.5;
+  };
+  std::vector<Pair> pairs;  ///< symmetric: (a, b) also applies to (b, a)
+
+  double mu(int material_a, int material_b) const {
+    for (const Pair& p : pairs)
+      if ((p.material_a == material_a && p.material_b == material_b) ||
+          (p.material_a == material_b && p.material_b == material_a))
+        return p.mu;
+    return default_mu;
+  }
+};
+
+struct World {
+  std::vector<RigidBody> bodies;
+  std::vector<HalfPlane> half_planes;
+  std::vector<Segment> segments;
+  Vec2 gravity{0.0, -9.81};  ///< m/s²
+  FrictionTable friction;
+};
+
+/// One contact point between a dynamic body a and a body b (dynamic, static, or a static
+/// shape). Which static shape b is: body_b ≥ 0 is a body index (possibly a static body);
+/// body_b = −1 with static_kind/static_index naming the half-plane or segment.
+struct Contact {
+  enum class StaticKind { none, half_plane, segment };
+  int body_a = -1;
+  int body_b = -1;
+  StaticKind static_kind = StaticKind::none;
+  int static_index = -1;
+  Vec2 point{0.0, 0.0};   ///< world point (m), midway between the two surfaces
+  Vec2 normal{0.0, 1.0};  ///< unit, from b to a
+  double gap = 0.0;       ///< φ (m), negative when overlapping
+  double mu = 0.0;        ///< friction coefficient of the pair
+};
+
+}  // namespace lcprelax

@@ -1,0 +1,70 @@
+#pragma once
+// Scene files: JSON (DESIGN §3). SI units (m, kg, s, rad); angles counter-clockwise.
+//
+// Schema (every key optional unless marked "required"; unknown keys are errors):
+//   {
+//     "name": "box on ground",              // string, default ""
+//     "gravity": [gx, gy],                  // m/s², default [0, -9.81]
+//     "dt": 0.01,                           // s, > 0, default 0.01
+//     "steps": 100,                         // integer ≥ 0, default 100
+//     "model": "lcp",                       // "lcp" | "convex", default "lcp"
+//     "margin": 0.01,                       // m, ≥ 0, default 0.01
+//     "friction": {                         // default {"default": 0.5, "pairs": []}
+//       "default": 0.5,                     // μ ≥ 0 for pairs not listed
+//       "pairs": [{"materials": [a, b], "mu": 0.3}]   // integers ≥ 0, μ ≥ 0; symmetric,
+//     },                                              // each unordered pair at most once
+//     "bodies": [{
+//       "vertices": [[x, y], ...],          // required; 3..12, counter-clockwise, strictly
+//                                           // convex; m, relative to "position" in the
+//                                           // body frame (rotated by "angle")
+//       "density": 1000,                    // kg/m², > 0 — OR both of:
+//       "mass": 1.0, "inertia": 0.1667,     // kg > 0, kg·m² > 0 about the centroid
+//       "position": [x, y],                 // m, default [0, 0]
+//       "angle": 0.0,                       // rad, default 0
+//       "velocity": [vx, vy],               // m/s of the centre of mass, default [0, 0]
+//       "angular_velocity": 0.0,            // rad/s, default 0
+//       "material": 0,                      // integer ≥ 0, default 0
+//       "static": false                     // default false
+//     }],
+//     "half_planes": [{"normal": [nx, ny], "offset": d, "material": k}],
+//     "segments": [{"a": [x, y], "b": [x, y], "material": k}]
+//   }
+// Meaning:
+// - A body's world shape is p = position + R(angle) v for its listed vertices v. The
+//   vertices are recentred on their centroid C, so the body's pose (its centre of mass) is
+//   position + R(angle) C; a polygon whose centroid is already at its origin is unchanged.
+// - "density" gives mass ρA and inertia ρJ (see scenes/polygon.hpp). Static bodies need no
+//   mass: when given, "mass"/"inertia" must be ≥ 0 (default 0) or "density" > 0.
+// - Half-plane: free space is {p : normal·p ≥ offset}; "normal" must be non-zero and is
+//   normalized (normal and offset are both divided by |normal|); "offset" default 0.
+// - Segment: static, two-sided; a ≠ b.
+// Errors: lcprelax::InputError whose message names the field path, e.g.
+//   "bodies[3].vertices: polygon is clockwise", "bodies[0].mass: must be > 0",
+//   "unknown key 'densty' in bodies[2]", "dt: expected a number, got string",
+//   "duplicate key 'mass' in bodies[1]", "invalid JSON: ..." (with nlohmann's position).
+// JSON has no NaN or Inf; numbers written as strings ("nan") are type errors, and numbers
+// that overflow a double are rejected by the parser.
+#include <lcprelax/scenes/scene.hpp>
+
+#include <string>
+#include <string_view>
+
+namespace lcprelax {
+
+/// Parses scene JSON text (the schema above). Throws InputError.
+Scene parse_scene(std::string_view json_text);
+
+/// Reads and parses a scene file; error messages are prefixed by "PATH: ".
+Scene load_scene(const std::string& path);
+
+/// Serializes a scene as JSON text in the schema above: every body with "mass" and
+/// "inertia" (static bodies omit them when both are 0), body-frame vertices and its centre of
+/// mass as "position"; numbers with round-trip precision, so parse_scene(write_scene(s))
+/// reproduces s exactly for a valid scene. Throws InputError naming the field for
+/// non-finite numbers or invalid settings.
+std::string write_scene(const Scene& scene);
+
+/// write_scene to a file; throws std::runtime_error if the file cannot be written.
+void save_scene(const std::string& path, const Scene& scene);
+
+}  // namespace lcprelax
