@@ -1,0 +1,88 @@
+#pragma once
+// Semi-implicit, velocity-level time stepping of a 2-D scene (DESIGN §1.4).
+//
+// One step of length Δt:
+//   1. contacts with gap φ ≤ margin (contact/collision.hpp);
+//   2. islands of touching dynamic bodies, each solved as its own contact problem by the
+//      scene's model (contact_step.hpp), in parallel over islands with OpenMP; bodies
+//      without contacts fly freely (v⁺ = v + Δt·g);
+//   3. positions q⁺ = q + Δt·v⁺ (symplectic Euler);
+//   4. post-stabilization (Cline & Pai 2003): where the linearized gap φ + Δt·Jn v⁺ falls
+//      below −slop, positions are projected by  min ½ΔqᵀMΔq  s.t.  Jn Δq + φ⁺ + slop ≥ 0,
+//      an LCP in Wnn solved by Lemke; velocities are untouched, so penetration is removed
+//      without adding kinetic energy.
+// Warm starts: each contact is keyed by (body a, body b, static shape, ordinal within the
+// pair); the final Lemke basis of its unknowns is reused next step.
+//
+// Energy (J): kinetic ½ Σ (m|v|² + Iω²) plus potential −Σ m g·x (zero at the origin).
+#include <lcprelax/kkt/qp_settings.hpp>
+#include <lcprelax/lcp/lcp_types.hpp>
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/scenes/scene.hpp>
+
+#include <map>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace lcprelax {
+
+struct SimulatorSettings {
+  LemkeSettings lemke;       ///< for the lcp model and the position projection
+  QpSettings qp;             ///< for the convex model (eps_abs 1e-8 by default here)
+  double penetration_slop = 1e-4;  ///< m: allowed overlap before projection
+  double convex_rho = 1.0;   ///< weight ρ of the convex model's λnᵀdiag(exp(φ))λn term
+  bool post_stabilization = true;
+  bool warm_start = true;
+  int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
+  SimulatorSettings();
+};
+
+struct StepStats {
+  int contacts = 0;
+  int islands = 0;
+  int largest_island_unknowns = 0;
+  long work = 0;               ///< Lemke pivots + interior-point iterations
+  int warm_started_islands = 0;
+  double max_residual = 0.0;   ///< largest contact-solve residual (contact_step.hpp)
+  double max_penetration = 0.0;  ///< largest −φ ≥ 0 at the start of the step (m)
+  int failed_islands = 0;      ///< islands whose solve failed (then solved frictionless)
+  std::string first_failure;   ///< message of the first failed solve
+  int projected_islands = 0;
+  double collision_seconds = 0.0, solve_seconds = 0.0;
+};
+
+class Simulator {
+ public:
+  explicit Simulator(Scene scene, SimulatorSettings settings = {});
+
+  /// Advances one step; applied (fx, fy, torque) per body (N, N·m) may be empty.
+  StepStats step(const std::vector<Vec3>& applied = {});
+
+  const Scene& scene() const { return scene_; }
+  const World& world() const { return scene_.world; }
+  double time() const { return time_; }
+  long steps_taken() const { return steps_; }
+  /// Contacts found at the start of the last step.
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  double kinetic_energy() const;
+  double potential_energy() const;
+  double total_energy() const { return kinetic_energy() + potential_energy(); }
+
+ private:
+  using ContactKey = std::array<int, 5>;
+  struct WarmEntry {
+    bool normal = false, plus = false, minus = false, slide = false;
+  };
+  std::vector<ContactKey> contact_keys() const;
+  void project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats);
+
+  Scene scene_;
+  SimulatorSettings settings_;
+  double time_ = 0.0;
+  long steps_ = 0;
+  std::vector<Contact> contacts_;
+  std::map<ContactKey, WarmEntry> warm_;
+};
+
+}  // namespace lcprelax
