@@ -41,6 +41,9 @@ Command add_lcp_command(CLI::App& parent);
 /// `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]`.
 Command add_fc2d_command(CLI::App& parent);
 
+/// `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex] [--threads T] [--picture OUT] ...`.
+Command add_pile_command(CLI::App& parent);
+
 /// Adds the `--json` flag every subcommand accepts.
 void add_json_flag(CLI::App& command, bool& json);
 

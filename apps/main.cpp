@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       add_qp_command(app),
       add_lcp_command(app),
       add_fc2d_command(app),
+      add_pile_command(app),
   };
 
   try {

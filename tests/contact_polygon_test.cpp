@@ -1,5 +1,6 @@
-// Polygon geometry: validation messages, mass properties against closed forms,
-// recentring, world vertices and bounding boxes.
+// Polygon geometry: validation messages, mass properties against closed forms (square,
+// rectangle far from the origin, right and general triangles), recentring (the returned
+// shift, bit-for-bit centred polygons), world vertices and bounding boxes.
 #include <lcprelax/contact/aabb.hpp>
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/sparse/errors.hpp>
@@ -88,6 +89,33 @@ TEST(ContactPolygon, RightTriangleMassPropertiesFarFromOrigin) {
   EXPECT_NEAR(m.inertia, mass * (a * a + b * b) / 18, 1e-12);
 }
 
+TEST(ContactPolygon, RectangleMassPropertiesFarFromOrigin) {
+  // w × h rectangle with a corner at (1e6, −1e6): A = wh, C = corner + (w/2, h/2),
+  // I = m (w² + h²)/12 (the sums are relative to the first vertex, so nothing cancels).
+  const double w = 2.0, h = 0.5, rho = 3.0;
+  const Vec2 o(1e6, -1e6);
+  const MassProperties m = mass_properties(poly({o, o + Vec2(w, 0), o + Vec2(w, h), o + Vec2(0, h)}), rho);
+  EXPECT_DOUBLE_EQ(m.area, w * h);
+  EXPECT_NEAR(m.centroid.x(), o.x() + w / 2, 1e-9);
+  EXPECT_NEAR(m.centroid.y(), o.y() + h / 2, 1e-9);
+  EXPECT_DOUBLE_EQ(m.mass, rho * w * h);
+  EXPECT_NEAR(m.inertia, rho * w * h * (w * w + h * h) / 12.0, 1e-12);
+}
+
+TEST(ContactPolygon, GeneralTriangleMassProperties) {
+  // Any triangle (a, b, c): A = ½ (b − a) × (c − a), C = (a + b + c)/3,
+  // I = m (|ab|² + |bc|² + |ca|²)/36 about the centroid.
+  const Vec2 a(0.3, -0.2), b(2.1, 0.4), c(0.7, 1.9);
+  const double rho = 1.7;
+  const MassProperties m = mass_properties(poly({a, b, c}), rho);
+  const Vec2 e1 = b - a, e2 = c - a;
+  const double area = 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+  const double sides2 = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  EXPECT_NEAR(m.area, area, 1e-14);
+  EXPECT_NEAR((m.centroid - (a + b + c) / 3.0).norm(), 0.0, 1e-14);
+  EXPECT_NEAR(m.inertia, rho * area * sides2 / 36.0, 1e-14);
+}
+
 TEST(ContactPolygon, MassPropertiesRejectBadInput) {
   EXPECT_THROW(mass_properties(unit_square(), 0.0), InputError);
   EXPECT_THROW(mass_properties(unit_square(), std::nan("")), InputError);
@@ -100,6 +128,22 @@ TEST(ContactPolygon, RecentredHasCentroidAtOrigin) {
   EXPECT_LT(m.centroid.norm(), 1e-14);
   EXPECT_NEAR(p.vertices[0].x(), -1.0, 1e-14);
   EXPECT_NEAR(p.vertices[0].y(), -2.0 / 3.0, 1e-14);
+
+  // recentre() returns the shift C: to_world(reference, C) keeps the world shape.
+  Polygon q = poly({{0, 0}, {2, 0}, {2, 1}, {0, 1}});
+  const Vec2 c = recentre(q);
+  EXPECT_EQ(c, Vec2(1.0, 0.5));
+  const Vec3 reference(1.0, -2.0, 0.7);
+  const Vec3 pose(to_world(reference, c).x(), to_world(reference, c).y(), reference.z());
+  EXPECT_NEAR((to_world(pose, q.vertices[2]) - to_world(reference, Vec2(2, 1))).norm(), 0.0, 1e-15);
+
+  // An already centred polygon is kept bit for bit, and the shift is exactly zero.
+  Polygon centred = poly({{-0.1, -0.3}, {0.1, -0.3}, {0.1, 0.3}, {-0.1, 0.3}});
+  const Polygon copy = centred;
+  EXPECT_EQ(recentre(centred), Vec2::Zero());
+  EXPECT_EQ(centred.vertices, copy.vertices);
+  Polygon clockwise = poly({{0, 0}, {0, 1}, {1, 0}});
+  EXPECT_THROW(recentre(clockwise), InputError);
 
   const RigidBody body = make_body(unit_square(), 3.0, Vec3(1, 2, 0.3));
   EXPECT_NEAR(body.mass, 3.0, 1e-15);

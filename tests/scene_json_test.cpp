@@ -3,11 +3,13 @@
 // naming the field path.
 #include <gtest/gtest.h>
 
+#include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
 #include <lcprelax/sparse/errors.hpp>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace lcprelax {
 namespace {
@@ -168,26 +170,55 @@ TEST(SceneJson, ContactModelText) {
 }
 
 TEST(SceneJson, PolygonErrorsNameTheBody) {
+  // The messages are validate_polygon's (contact/polygon.hpp), prefixed by the field path.
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [0, 1], [1, 0]]"),
-               {"bodies[1].vertices: polygon is clockwise"});
+               {"bodies[1].vertices: vertices are clockwise"});
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [2, 0], [0.5, 0.5], [0, 2]]"),
-               {"bodies[1].vertices: polygon is not convex"});
+               {"bodies[1].vertices: vertex 2 makes the polygon non-convex"});
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [1, 0], [2, 0], [0, 1]]"),
-               {"bodies[1].vertices: collinear or repeated"});
-  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [1, 0]]"), {"bodies[1].vertices", "3 to 12"});
+               {"bodies[1].vertices: vertex 1 makes the polygon non-convex"});
+  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [1, 0], [1, 0], [0, 1]]"),
+               {"bodies[1].vertices: vertices 1 and 2 coincide"});
+  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [1, 0]]"), {"bodies[1].vertices", "at least 3"});
   std::string many = "[";
   for (int k = 0; k < 13; ++k)
     many += (k ? ", [" : "[") + std::to_string(std::cos(k * 2 * kPi / 13)) + ", " +
             std::to_string(std::sin(k * 2 * kPi / 13)) + "]";
-  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", many + "]"), {"bodies[1].vertices", "got 13"});
+  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", many + "]"), {"bodies[1].vertices", "13 vertices, at most 12"});
   // A pentagram turns left at every vertex but winds twice.
   std::string star = "[";
   for (int k = 0; k < 5; ++k)
     star += (k ? ", [" : "[") + std::to_string(std::cos(k * 4 * kPi / 5)) + ", " +
             std::to_string(std::sin(k * 4 * kPi / 5)) + "]";
-  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", star + "]"), {"bodies[1].vertices: polygon is not convex"});
+  expect_error(edit("[[0, 0], [1, 0], [0, 1]]", star + "]"), {"bodies[1].vertices: polygon winds more than once"});
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [1, 0, 3], [0, 1]]"), {"bodies[1].vertices[1]"});
   expect_error(edit(R"("vertices": [[0, 0], [1, 0], [0, 1]], )", ""), {"bodies[1]: missing required key 'vertices'"});
+}
+
+TEST(SceneJson, RecentringKeepsTheWorldShape) {
+  // A 2 × 1 rectangle with a corner at its origin, at position (1, −2) rotated by 0.7: the
+  // world shape is position + R(0.7) v; the body's vertices are recentred on C = (1, ½) and
+  // its pose (centre of mass) is position + R(0.7) C.
+  const std::vector<Vec2> v = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  const Scene s = parse_scene(R"({"bodies": [{"vertices": [[0, 0], [2, 0], [2, 1], [0, 1]],
+      "density": 3, "position": [1, -2], "angle": 0.7}]})");
+  const RigidBody& b = s.world.bodies.at(0);
+  const Vec3 reference(1.0, -2.0, 0.7);
+  const double c = std::cos(0.7), sn = std::sin(0.7);
+  EXPECT_NEAR(b.pose.x(), 1.0 + c * 1.0 - sn * 0.5, 1e-15);
+  EXPECT_NEAR(b.pose.y(), -2.0 + sn * 1.0 + c * 0.5, 1e-15);
+  EXPECT_EQ(b.pose.z(), 0.7);
+  const std::vector<Vec2> world = world_vertices(b);
+  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_NEAR((world[i] - to_world(reference, v[i])).norm(), 0.0, 1e-14);
+  EXPECT_LT(mass_properties(b.shape, 1.0).centroid.norm(), 1e-15);
+  EXPECT_DOUBLE_EQ(b.mass, 6.0);                       // ρ·2·1
+  EXPECT_DOUBLE_EQ(b.inertia, 6.0 * (4.0 + 1.0) / 12);  // m(w² + h²)/12
+
+  // Centred vertices are kept bit for bit, and the position is the centre of mass.
+  const Scene t = parse_scene(R"({"bodies": [{"vertices": [[-0.1, -0.3], [0.1, -0.3], [0.1, 0.3], [-0.1, 0.3]],
+      "density": 1, "position": [0.3, 0.7], "angle": 2}]})");
+  EXPECT_EQ(t.world.bodies[0].shape.vertices[0], Vec2(-0.1, -0.3));
+  EXPECT_EQ(t.world.bodies[0].pose, Vec3(0.3, 0.7, 2.0));
 }
 
 TEST(SceneJson, MassErrorsNameTheField) {

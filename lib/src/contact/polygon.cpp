@@ -10,6 +10,7 @@ namespace lcprelax {
 namespace {
 
 constexpr double kRelativeTolerance = 1e-9;
+constexpr double kCentredTolerance = 1e-12;  // recentre(): |C| ≤ 1e-12·L counts as 0
 constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -102,18 +103,27 @@ MassProperties mass_properties(const Polygon& polygon, double density) {
   return m;
 }
 
+Vec2 recentre(Polygon& polygon) {
+  const Vec2 c = mass_properties(polygon, 1.0).centroid;
+  std::vector<Vec2>& v = polygon.vertices;
+  double size = 0.0;  // L, as in validate_polygon
+  for (const Vec2& p : v) size = std::max(size, (p - v[0]).norm());
+  if (c.norm() <= kCentredTolerance * size) return Vec2::Zero();
+  for (Vec2& p : v) p -= c;
+  return c;
+}
+
 Polygon recentred(const Polygon& polygon) {
-  const MassProperties m = mass_properties(polygon, 1.0);
   Polygon out = polygon;
-  for (Vec2& p : out.vertices) p -= m.centroid;
+  recentre(out);
   return out;
 }
 
 RigidBody make_body(const Polygon& polygon, double density, const Vec3& pose) {
-  const MassProperties m = mass_properties(polygon, density);
   RigidBody body;
+  const MassProperties m = mass_properties(polygon, density);
   body.shape = polygon;
-  for (Vec2& p : body.shape.vertices) p -= m.centroid;
+  recentre(body.shape);
   body.mass = m.mass;
   body.inertia = m.inertia;
   body.pose = pose;

@@ -21,6 +21,7 @@ struct LemkeSolver::Impl {
   Vector q, d;       // q = q_user / q_norm: the pivoting runs on ‖q‖∞ = 1 (z scales with q)
   double q_norm = 1.0;
   double tol = 0, res_tol = 0;
+  double mnorm = 0;  // ‖M‖∞
   long max_pivots = 0;
   bool is_setup = false;
   std::vector<bool> warm;
@@ -214,6 +215,7 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
   for (Index j = 0; j < m.M.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(m.M, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
   const double mnorm = n ? row_sums.maxCoeff() : 0.0;
+  m.mnorm = mnorm;
   m.tol = m.settings.pivot_tolerance > 0 ? m.settings.pivot_tolerance
                                          : 10.0 * std::max<Index>(n, 1) * std::numeric_limits<double>::epsilon() *
                                                std::max(1.0, mnorm);
@@ -242,6 +244,42 @@ const LcpResult& LemkeSolver::solve() {
   m.result = LcpResult{};
   m.run();
   m.warm.clear();
+  // Retries on M + εI (Drake's MobyLCP does the same): a failure of a degenerate problem
+  // (ray termination or singular basis from roundoff) with a solution that is accepted
+  // only if it solves the ORIGINAL LCP to the residual tolerance.
+  const LcpStatus first = m.result.info.status;
+  if (first != LcpStatus::solved && m.settings.regularization_retries > 0 && m.n > 0) {
+    const SparseMatrix M0 = m.M;
+    long pivots = m.result.info.pivots, refactorizations = m.result.info.refactorizations;
+    const std::string first_message = m.result.info.message;
+    SparseMatrix I(m.n, m.n);
+    I.setIdentity();
+    double eps = m.settings.regularization * std::max(1.0, m.mnorm);
+    for (int k = 0; k < m.settings.regularization_retries; ++k, eps *= 100.0) {
+      m.M = M0 + eps * I;
+      m.M.makeCompressed();
+      m.result = LcpResult{};
+      m.run();
+      pivots += m.result.info.pivots;
+      refactorizations += m.result.info.refactorizations;
+      if (m.result.info.status != LcpStatus::solved && m.result.info.status != LcpStatus::numerical_error) continue;
+      if (m.result.z.size() != m.n) continue;
+      m.result.w = M0 * m.result.z + m.q_user;
+      m.result.info.complementarity = m.result.z.cwiseMin(m.result.w).cwiseAbs().maxCoeff();
+      if (m.result.info.complementarity <= m.res_tol) {
+        m.result.info.status = LcpStatus::solved;
+        m.result.info.regularization = eps;
+        m.result.info.message = "solved on M + " + std::to_string(eps) + "·I after " + to_string(first) + " (" +
+                                first_message + ")";
+        break;
+      }
+      m.result.info.status = LcpStatus::numerical_error;
+      m.result.info.message = "regularized retries did not reach the residual tolerance (first: " + first_message + ")";
+    }
+    m.M = M0;  // the basis factorization (for backward) is that of the regularized problem
+    m.result.info.pivots = pivots;
+    m.result.info.refactorizations = refactorizations;
+  }
   m.result.info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m.result;
 }

@@ -1,5 +1,5 @@
 // Scene files: JSON reader and writer (scenes/scene_json.hpp documents the schema).
-#include <lcprelax/scenes/polygon.hpp>
+#include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
 #include <lcprelax/sparse/errors.hpp>
 
@@ -21,6 +21,13 @@ using scene_json::find;
 using scene_json::member;
 
 constexpr long long kMaxInt = INT_MAX;
+
+// validate_polygon, as an InputError "PATH: message" ("bodies[3].vertices: vertices are
+// clockwise").
+void check_polygon(const Polygon& polygon, const std::string& path) {
+  const std::string error = validate_polygon(polygon);
+  if (!error.empty()) fail(path, error);
+}
 
 double nonnegative(const Json& j, const std::string& path) {
   const double v = scene_json::number(j, path);
@@ -74,9 +81,9 @@ RigidBody read_body(const Json& j, const std::string& path) {
   RigidBody body;
   const std::string vpath = member(path, "vertices");
   const Json& vs = scene_json::array(scene_json::require(j, path, "vertices"), vpath);
-  std::vector<Vec2> vertices;
-  for (std::size_t i = 0; i < vs.size(); ++i) vertices.push_back(scene_json::vec2(vs[i], element(vpath, i)));
-  check_convex_polygon(vertices, vpath);
+  Polygon polygon;
+  for (std::size_t i = 0; i < vs.size(); ++i) polygon.vertices.push_back(scene_json::vec2(vs[i], element(vpath, i)));
+  check_polygon(polygon, vpath);
 
   if (const Json* s = find(j, "static")) body.is_static = scene_json::boolean(*s, member(path, "static"));
   const Json* p = find(j, "position");
@@ -88,12 +95,11 @@ RigidBody read_body(const Json& j, const std::string& path) {
   const Json* density = find(j, "density");
   const Json* mass = find(j, "mass");
   const Json* inertia = find(j, "inertia");
-  const PolygonProperties props = polygon_properties(vertices);
   if (density && (mass || inertia)) fail(path, "give either 'density' or 'mass' and 'inertia', not both");
   if (density) {
-    const double rho = positive(*density, member(path, "density"));
-    body.mass = rho * props.area;
-    body.inertia = rho * props.polar_moment;
+    const MassProperties props = mass_properties(polygon, positive(*density, member(path, "density")));
+    body.mass = props.mass;
+    body.inertia = props.inertia;
   } else if (mass || inertia) {
     if (!mass) fail(path, "'inertia' given without 'mass'");
     if (!inertia) fail(path, "'mass' given without 'inertia'");
@@ -107,10 +113,9 @@ RigidBody read_body(const Json& j, const std::string& path) {
   }
 
   // Recentre the polygon on its centroid C: the centre of mass is position + R(angle) C.
-  const Vec2 c = recentre_polygon(vertices);
-  body.shape.vertices = std::move(vertices);
-  const double cs = std::cos(angle), sn = std::sin(angle);
-  body.pose = Vec3(position.x() + cs * c.x() - sn * c.y(), position.y() + sn * c.x() + cs * c.y(), angle);
+  const Vec2 c = recentre(polygon);
+  body.shape = std::move(polygon);
+  body.pose << to_world(Vec3(position.x(), position.y(), angle), c), angle;
 
   const Json* v = find(j, "velocity");
   const Vec2 velocity = v ? scene_json::vec2(*v, member(path, "velocity")) : Vec2::Zero();

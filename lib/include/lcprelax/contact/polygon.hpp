@@ -48,13 +48,22 @@ struct MassProperties {
 /// finite and > 0.
 MassProperties mass_properties(const Polygon& polygon, double density);
 
-/// The same polygon with its vertices shifted so that the centroid is at the origin.
+/// Shifts the vertices of `polygon` so that its centroid C is at the origin and returns the
+/// shift C (in the polygon's former frame): a body whose vertices were given relative to a
+/// reference pose (x, y, θ) keeps its world shape when its pose becomes
+/// to_world((x, y, θ), C). A centroid within 1e-12·L of the origin (L as in the validation
+/// tolerances) counts as the origin: nothing moves and exactly zero is returned, so an
+/// already centred polygon is kept bit for bit (files round-trip exactly).
 /// Throws InputError if the polygon is invalid.
+Vec2 recentre(Polygon& polygon);
+
+/// The same polygon recentred on its centroid (recentre() on a copy).
 Polygon recentred(const Polygon& polygon);
 
 /// A dynamic body with shape `polygon` (recentred on its centroid), mass and inertia from
 /// `density` (kg/m²), and pose (x, y, θ) where (x, y) is the world position of the
-/// centroid. Throws InputError for an invalid polygon or density.
+/// centroid (where the vertices were relative to is discarded; see recentre() to keep a
+/// world shape instead). Throws InputError for an invalid polygon or density.
 RigidBody make_body(const Polygon& polygon, double density, const Vec3& pose);
 
 /// World position of a body-frame point: (x, y) + R(θ) p.

@@ -51,8 +51,13 @@ constexpr const char* to_string(LemkeMethod m) {
 struct LemkeSettings {
   /// automatic: dense when n ≤ dense_max_n, else sparse.
   LemkeMethod method = LemkeMethod::automatic;
-  /// Largest n solved densely by `automatic` (switch point measured by bench/bench_lemke).
-  int dense_max_n = 100;
+  /// Largest n solved densely by `automatic`: the measured switch point (bench/README.md;
+  /// `OMP_NUM_THREADS=1 bench_lemke --benchmark_repetitions=5`, median CPU time
+  /// sparse/dense): random sparse P-matrix LCPs 1.24 at n = 16, 0.97–1.10 at 24–32,
+  /// 0.65–0.77 at 48–64; generated fc2d piles 1.26–1.32 at n = 40–60, 0.86 at 80; Siconos
+  /// fc2d 0.43 at n = 44. Of 24, 32, 48 and 64, 32 loses least over these problems (sum
+  /// of |log ratio| where the other method was faster).
+  int dense_max_n = 32;
   /// Pivot limit; 0 means 50·(n + 1) + 2ⁿ capped at 10⁷ (enough for Murty's examples).
   long max_pivots = 0;
   /// Zero tolerance of the pivot entries and of the lexicographic ties; 0 means
@@ -65,6 +70,13 @@ struct LemkeSettings {
   /// Refactorize the basis from scratch every this many pivots (drift control; for the
   /// sparse method also the largest Schur-complement update, memory n·interval doubles).
   int refactor_interval = 50;
+  /// After a failure (ray termination, singular basis, pivot limit), retry this many times
+  /// on M + εI with ε = regularization·max(1, ‖M‖∞)·100ᵏ (k = 0, 1, ...); a retry's z is
+  /// accepted only if it solves the original LCP to residual_tolerance. Meant for
+  /// degenerate contact LCPs (redundant contacts) where roundoff sends Lemke to a
+  /// secondary ray; backward() then differentiates the regularized problem.
+  int regularization_retries = 0;
+  double regularization = 1e-10;
   /// Covering vector d > 0 of the artificial variable (empty: all ones).
   Vector covering;
 
@@ -81,6 +93,7 @@ struct LcpInfo {
   bool warm_started = false;  ///< the warm-start basis was complementary and feasible
   LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
   long refactorizations = 0;  ///< basis factorizations from scratch
+  double regularization = 0.0;  ///< ε of the accepted retry on M + εI, 0 if none
 };
 
 struct LcpResult {

@@ -15,8 +15,9 @@
 //     },                                              // each unordered pair at most once
 //     "bodies": [{
 //       "vertices": [[x, y], ...],          // required; 3..12, counter-clockwise, strictly
-//                                           // convex; m, relative to "position" in the
-//                                           // body frame (rotated by "angle")
+//                                           // convex (validate_polygon); m, relative to
+//                                           // "position" in the body frame (rotated by
+//                                           // "angle")
 //       "density": 1000,                    // kg/m², > 0 — OR both of:
 //       "mass": 1.0, "inertia": 0.1667,     // kg > 0, kg·m² > 0 about the centroid
 //       "position": [x, y],                 // m, default [0, 0]
@@ -32,14 +33,16 @@
 // Meaning:
 // - A body's world shape is p = position + R(angle) v for its listed vertices v. The
 //   vertices are recentred on their centroid C, so the body's pose (its centre of mass) is
-//   position + R(angle) C; a polygon whose centroid is already at its origin is unchanged.
-// - "density" gives mass ρA and inertia ρJ (see scenes/polygon.hpp). Static bodies need no
-//   mass: when given, "mass"/"inertia" must be ≥ 0 (default 0) or "density" > 0.
+//   position + R(angle) C; a polygon whose centroid is already at its origin is unchanged
+//   (contact/polygon.hpp: recentre).
+// - "density" gives mass ρA and inertia ρJ (contact/polygon.hpp: mass_properties). Static
+//   bodies need no mass: when given, "mass"/"inertia" must be ≥ 0 (default 0) or
+//   "density" > 0.
 // - Half-plane: free space is {p : normal·p ≥ offset}; "normal" must be non-zero and is
 //   normalized (normal and offset are both divided by |normal|); "offset" default 0.
 // - Segment: static, two-sided; a ≠ b.
 // Errors: lcprelax::InputError whose message names the field path, e.g.
-//   "bodies[3].vertices: polygon is clockwise", "bodies[0].mass: must be > 0",
+//   "bodies[3].vertices: vertices are clockwise", "bodies[0].mass: must be > 0",
 //   "unknown key 'densty' in bodies[2]", "dt: expected a number, got string",
 //   "duplicate key 'mass' in bodies[1]", "invalid JSON: ..." (with nlohmann's position).
 // JSON has no NaN or Inf; numbers written as strings ("nan") are type errors, and numbers

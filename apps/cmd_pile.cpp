@@ -1,0 +1,147 @@
+// `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex] [--threads T]
+//  [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json] [--export-fc2d FILE]
+//  [--json]` (DESIGN §4): random convex polygons dropped into a container (or a scene
+// file), simulated with models/simulator.hpp.
+// JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
+// (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
+// potential energy divided by the initial total), plus model, failed_islands, seconds.
+// Exit status 1 when any island's contact solve failed (it was then solved by the convex
+// fallback, see simulator.cpp), 2 on bad input.
+#include "cli_common.hpp"
+
+#include <lcprelax/contact/collision.hpp>
+#include <lcprelax/io/siconos_writer.hpp>
+#include <lcprelax/models/fc2d_export.hpp>
+#include <lcprelax/models/simulator.hpp>
+#include <lcprelax/scenes/picture.hpp>
+#include <lcprelax/scenes/pile_scene.hpp>
+#include <lcprelax/scenes/scene_json.hpp>
+#include <lcprelax/sparse/errors.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+namespace lcprelax::cli {
+namespace {
+
+struct PileCliOptions {
+  int bodies = 300;
+  int steps = 400;
+  std::string model = "convex";
+  int threads = 0;
+  std::uint64_t seed = 1;
+  std::string picture, frames, scene, export_fc2d, color = "contacts";
+  int frame_every = 5;
+  bool draw_contacts = false;
+  bool json = false;
+};
+
+PictureOptions picture_options(const PileCliOptions& o) {
+  PictureOptions p;
+  p.color = o.color == "speed" ? PictureOptions::Color::speed : PictureOptions::Color::contacts;
+  p.draw_contacts = o.draw_contacts;
+  return p;
+}
+
+int run_pile(const PileCliOptions& o) {
+  Scene scene;
+  if (!o.scene.empty()) {
+    scene = load_scene(o.scene);
+  } else {
+    PileOptions p;
+    p.bodies = o.bodies;
+    p.seed = o.seed;
+    scene = make_pile_scene(p);
+  }
+  scene.settings.model = parse_contact_model(o.model);
+  scene.settings.steps = o.steps;
+  SimulatorSettings settings;
+  settings.threads = o.threads;
+  Simulator sim(std::move(scene), settings);
+
+  const bool progress = !o.json && isatty(STDERR_FILENO);
+  const double e0 = sim.total_energy();
+  double energy = e0, max_gain = -std::numeric_limits<double>::infinity(), max_pen = 0.0, max_res = 0.0;
+  int contacts_max = 0;
+  long failed = 0;
+  std::string first_failure;
+  const Stopwatch watch;
+  for (int k = 0; k < o.steps; ++k) {
+    if (!o.export_fc2d.empty() && k + 1 == o.steps) {
+      // the last step's contact problem, before it is solved
+      const std::vector<Contact> c = find_contacts(sim.world(), CollisionSettings{sim.scene().settings.margin});
+      const io::Fc2dData d = export_fc2d(sim.world(), c, sim.scene().settings.dt);
+      io::write_siconos_fc2d(o.export_fc2d, d.W, d.q, d.mu);
+    }
+    const StepStats st = sim.step();
+    const double e = sim.total_energy();
+    max_gain = std::max(max_gain, (e - energy) / std::abs(e0));
+    energy = e;
+    max_pen = std::max(max_pen, st.max_penetration);
+    max_res = std::max(max_res, st.max_residual);
+    contacts_max = std::max(contacts_max, st.contacts);
+    if (st.failed_islands > 0 && failed == 0) first_failure = st.first_failure;
+    failed += st.failed_islands;
+    if (!o.frames.empty() && k % o.frame_every == 0)
+      write_frame(o.frames, k / o.frame_every, sim.world(), sim.contacts(), picture_options(o));
+    if (progress && (k % 10 == 0 || k + 1 == o.steps)) {
+      const double s = watch.seconds();
+      std::fprintf(stderr, "\rstep %d/%d  contacts %d  islands %d  %.3f s/step  ETA %.0f s   ", k + 1, o.steps,
+                   st.contacts, st.islands, s / (k + 1), s / (k + 1) * (o.steps - k - 1));
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  const double seconds = watch.seconds();
+  if (!o.picture.empty()) write_picture(o.picture, sim.world(), sim.contacts(), picture_options(o));
+
+  Json j;
+  j["bodies"] = sim.world().bodies.size();
+  j["contacts_max"] = contacts_max;
+  j["steps"] = o.steps;
+  j["seconds_per_step"] = o.steps > 0 ? seconds / o.steps : 0.0;
+  j["max_penetration"] = max_pen;
+  j["max_residual"] = max_res;
+  j["max_energy_gain"] = o.steps > 0 ? number_or_null(max_gain) : Json(0.0);
+  j["model"] = o.model;
+  j["failed_islands"] = failed;
+  j["seconds"] = seconds;
+  if (!o.picture.empty()) j["picture"] = o.picture;
+  if (o.json) {
+    print_json(j);
+  } else {
+    for (const auto& [key, value] : j.items()) std::cout << key << ": " << value.dump() << '\n';
+    if (failed) std::cout << "first failure: " << first_failure << '\n';
+  }
+  return failed == 0 ? kExitSuccess : kExitSolveFailed;
+}
+
+}  // namespace
+
+Command add_pile_command(CLI::App& parent) {
+  auto o = std::make_shared<PileCliOptions>();
+  CLI::App* app = parent.add_subcommand("pile", "Drop random convex polygons into a container and simulate");
+  app->add_option("--bodies", o->bodies, "Number of polygons")->check(CLI::Range(1, 1000000))->capture_default_str();
+  app->add_option("--steps", o->steps, "Time steps")->check(CLI::Range(0, 100000000))->capture_default_str();
+  app->add_option("--model", o->model, "Contact model: convex (interior point, default) or lcp (Lemke)")
+      ->check(CLI::IsMember({"lcp", "convex"}))
+      ->capture_default_str();
+  app->add_option("--threads", o->threads, "OpenMP threads over islands (0: default)")->check(CLI::Range(0, 1024));
+  app->add_option("--seed", o->seed, "Random seed of the pile")->capture_default_str();
+  app->add_option("--scene", o->scene, "Simulate this scene JSON file instead of a random pile");
+  app->add_option("--picture", o->picture, "Write the final state to OUT.svg or OUT.png");
+  app->add_option("--frames", o->frames, "Write numbered PNG frames into this directory");
+  app->add_option("--frame-every", o->frame_every, "Steps between frames")->check(CLI::Range(1, 1000000));
+  app->add_option("--color", o->color, "Color bodies by contacts or speed")
+      ->check(CLI::IsMember({"contacts", "speed"}))
+      ->capture_default_str();
+  app->add_flag("--draw-contacts", o->draw_contacts, "Draw contact points and normals");
+  app->add_option("--export-fc2d", o->export_fc2d, "Write the last step's contact problem as a Siconos fc2d file");
+  add_json_flag(*app, o->json);
+  return Command{app, [o] { return run_pile(*o); }};
+}
+
+}  // namespace lcprelax::cli
