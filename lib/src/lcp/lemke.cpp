@@ -220,7 +220,7 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
                                          : 10.0 * std::max<Index>(n, 1) * std::numeric_limits<double>::epsilon() *
                                                std::max(1.0, mnorm);
   m.max_pivots = m.settings.max_pivots > 0 ? m.settings.max_pivots
-                                           : 50L * (n + 1) + (n < 23 ? (1L << n) : 10'000'000L);
+                                           : 50L * (n + 1) + (n < 20 ? (1L << n) : 0L);
   m.max_pivots = std::min(m.max_pivots, 10'000'000L);
   m.is_setup = true;
   m.result = LcpResult{};
@@ -244,39 +244,54 @@ const LcpResult& LemkeSolver::solve() {
   m.result = LcpResult{};
   m.run();
   m.warm.clear();
-  // Retries on M + εI (Drake's MobyLCP does the same): a failure of a degenerate problem
-  // (ray termination or singular basis from roundoff) with a solution that is accepted
-  // only if it solves the ORIGINAL LCP to the residual tolerance.
+  // Retries after a failure (ray termination, singular basis, pivot limit) of degenerate
+  // problems, where roundoff sends the pivot path to a secondary ray (lcp_types.hpp):
+  // first other covering vectors (another pivot path to the same LCP), then M + εI (as
+  // Drake's MobyLCP does), whose z is accepted only if it solves the ORIGINAL LCP to the
+  // residual tolerance.
   const LcpStatus first = m.result.info.status;
-  if (first != LcpStatus::solved && m.settings.regularization_retries > 0 && m.n > 0) {
+  const int retries = m.settings.covering_retries + m.settings.regularization_retries;
+  if (first != LcpStatus::solved && first != LcpStatus::pivot_limit && retries > 0 && m.n > 0) {
     const SparseMatrix M0 = m.M;
+    const Vector d0 = m.d;
     long pivots = m.result.info.pivots, refactorizations = m.result.info.refactorizations;
     const std::string first_message = m.result.info.message;
     SparseMatrix I(m.n, m.n);
     I.setIdentity();
     double eps = m.settings.regularization * std::max(1.0, m.mnorm);
-    for (int k = 0; k < m.settings.regularization_retries; ++k, eps *= 100.0) {
-      m.M = M0 + eps * I;
-      m.M.makeCompressed();
+    for (int k = 0; k < retries; ++k) {
+      const bool covering = k < m.settings.covering_retries;
+      m.d = d0;
+      if (covering)
+        for (Index i = 0; i < m.n; ++i) m.d(i) *= k % 2 == 0 ? 1.0 + (i % 7) / 7.0 : 1.0 + 1e-3 * i;
+      m.M = M0;
+      if (!covering) {
+        m.M = M0 + eps * I;
+        m.M.makeCompressed();
+      }
       m.result = LcpResult{};
       m.run();
       pivots += m.result.info.pivots;
       refactorizations += m.result.info.refactorizations;
-      if (m.result.info.status != LcpStatus::solved && m.result.info.status != LcpStatus::numerical_error) continue;
-      if (m.result.z.size() != m.n) continue;
-      m.result.w = M0 * m.result.z + m.q_user;
-      m.result.info.complementarity = m.result.z.cwiseMin(m.result.w).cwiseAbs().maxCoeff();
-      if (m.result.info.complementarity <= m.res_tol) {
-        m.result.info.status = LcpStatus::solved;
-        m.result.info.regularization = eps;
-        m.result.info.message = "solved on M + " + std::to_string(eps) + "·I after " + to_string(first) + " (" +
-                                first_message + ")";
-        break;
+      const LcpStatus s = m.result.info.status;
+      if ((s == LcpStatus::solved || s == LcpStatus::numerical_error) && m.result.z.size() == m.n) {
+        m.result.w = M0 * m.result.z + m.q_user;
+        m.result.info.complementarity = m.result.z.cwiseMin(m.result.w).cwiseAbs().maxCoeff();
+        if (m.result.info.complementarity <= m.res_tol) {
+          m.result.info.status = LcpStatus::solved;
+          m.result.info.regularization = covering ? 0.0 : eps;
+          m.result.info.message = std::string("solved on retry ") + std::to_string(k + 1) +
+                                  (covering ? " (other covering vector)" : " (M + εI)") + " after " + to_string(first) +
+                                  ": " + first_message;
+          break;
+        }
       }
-      m.result.info.status = LcpStatus::numerical_error;
-      m.result.info.message = "regularized retries did not reach the residual tolerance (first: " + first_message + ")";
+      m.result.info.status = first;
+      m.result.info.message = std::to_string(k + 1) + " retries failed; first failure: " + first_message;
+      if (!covering) eps *= 100.0;
     }
-    m.M = M0;  // the basis factorization (for backward) is that of the regularized problem
+    m.M = M0;  // the basis factorization (for backward) is that of the accepted retry
+    m.d = d0;
     m.result.info.pivots = pivots;
     m.result.info.refactorizations = refactorizations;
   }

@@ -11,6 +11,7 @@ std::string LemkeSettings::validation_error() const {
   if (max_pivots < 0) os << "max_pivots = " << max_pivots << " must be >= 0";
   else if (!(pivot_tolerance >= 0)) os << "pivot_tolerance = " << pivot_tolerance << " must be >= 0";
   else if (!(residual_tolerance >= 0)) os << "residual_tolerance = " << residual_tolerance << " must be >= 0";
+  else if (covering_retries < 0) os << "covering_retries = " << covering_retries << " must be >= 0";
   else if (regularization_retries < 0) os << "regularization_retries = " << regularization_retries << " must be >= 0";
   else if (!(regularization > 0) || !std::isfinite(regularization)) os << "regularization = " << regularization << " must be finite and > 0";
   else if (dense_max_n < 0) os << "dense_max_n = " << dense_max_n << " must be >= 0";

@@ -55,10 +55,10 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // interior point no interior (measured: "no progress" failures on 1-2 contact islands).
   const double kappa = r1.x.cwiseMax(0.0).sum() * (1.0 + 1e-6) + 1e-12;
 
-  // Phase 2: friction, bounded by κ, with the diag(exp(φ)) term on λn.
+  // Phase 2: friction, bounded by κ, with the ρ·diag(exp(φ))·diag(Wnn) term on λn.
   QpProblem p2(n);
   SparseMatrix P = W;
-  for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i));
+  for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * W.coeff(i, i);
   p2.P = upper(P);
   p2.q.head(nc) = s.Jn * s.v_star;
   p2.q.tail(nf) = s.Jt * s.v_star;

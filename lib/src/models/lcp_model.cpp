@@ -48,26 +48,13 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
                                 const std::vector<bool>& warm) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
-  // Degenerate piles (redundant and wedged contacts) can send Lemke to a secondary ray or
-  // a singular basis through roundoff. Retry with other covering vectors (a different
-  // pivot path to the same LCP), then on M + εI (LemkeSettings::regularization_retries);
-  // every accepted z solves the original LCP to the residual tolerance.
+  // Degenerate piles (redundant and wedged contacts) rely on Lemke's retries
+  // (LemkeSettings::covering_retries, regularization_retries).
   LemkeSolver solver(settings);
   solver.setup(lcp.M, lcp.q);
   if (static_cast<Index>(warm.size()) == lcp.q.size()) solver.warm_start(warm);
-  LcpResult r = solver.solve();
-  long pivots = r.info.pivots;
-  for (int attempt = 1; attempt <= 3 && r.info.status != LcpStatus::solved; ++attempt) {
-    LemkeSettings retry = settings;
-    retry.covering = Vector(lcp.q.size());
-    for (Index i = 0; i < lcp.q.size(); ++i)
-      retry.covering(i) = attempt == 1 ? 1.0 + (i % 7) / 7.0 : attempt == 2 ? 1.0 + 1e-3 * i : 1.0;
-    if (attempt == 3) retry.regularization_retries = std::max(retry.regularization_retries, 2);
-    LemkeSolver again(retry);
-    again.setup(lcp.M, lcp.q);
-    r = again.solve();
-    pivots += r.info.pivots;
-  }
+  const LcpResult& r = solver.solve();
+  const long pivots = r.info.pivots;
   ContactSolution out;
   out.ok = r.info.status == LcpStatus::solved;
   out.message = r.info.message;

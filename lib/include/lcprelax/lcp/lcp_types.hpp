@@ -58,7 +58,8 @@ struct LemkeSettings {
   /// fc2d 0.43 at n = 44. Of 24, 32, 48 and 64, 32 loses least over these problems (sum
   /// of |log ratio| where the other method was faster).
   int dense_max_n = 32;
-  /// Pivot limit; 0 means 50·(n + 1) + 2ⁿ capped at 10⁷ (enough for Murty's examples).
+  /// Pivot limit; 0 means 50·(n + 1), plus 2ⁿ for n < 20 (enough for Murty's examples),
+  /// capped at 10⁷. Contact LCPs take a few pivots per unknown.
   long max_pivots = 0;
   /// Zero tolerance of the pivot entries and of the lexicographic ties; 0 means
   /// 10·n·ε·max(1, ‖M‖∞) (scaled as in Drake's MobyLCP). The pivoting runs on q/‖q‖∞ (the
@@ -70,12 +71,16 @@ struct LemkeSettings {
   /// Refactorize the basis from scratch every this many pivots (drift control; for the
   /// sparse method also the largest Schur-complement update, memory n·interval doubles).
   int refactor_interval = 50;
-  /// After a failure (ray termination, singular basis, pivot limit), retry this many times
-  /// on M + εI with ε = regularization·max(1, ‖M‖∞)·100ᵏ (k = 0, 1, ...); a retry's z is
-  /// accepted only if it solves the original LCP to residual_tolerance. Meant for
-  /// degenerate contact LCPs (redundant contacts) where roundoff sends Lemke to a
-  /// secondary ray; backward() then differentiates the regularized problem.
-  int regularization_retries = 0;
+  /// Retries after a ray termination or numerical failure (not after the pivot limit):
+  /// first `covering_retries` solves with perturbed covering vectors (d_i·(1 + (i mod 7)/7),
+  /// then d_i·(1 + 10⁻³i), alternating), then `regularization_retries` solves on M + εI with
+  /// ε = regularization·max(1, ‖M‖∞)·100ᵏ. A retry's z is accepted only if it solves the
+  /// original LCP to residual_tolerance, so a genuinely unsolvable LCP still ends in its
+  /// first failure status. Meant for degenerate contact LCPs (redundant and wedged
+  /// contacts), where roundoff sends the pivot path to a secondary ray; backward() then
+  /// differentiates with the accepted retry's basis. Set both to 0 for plain Lemke.
+  int covering_retries = 2;
+  int regularization_retries = 2;
   double regularization = 1e-10;
   /// Covering vector d > 0 of the artificial variable (empty: all ones).
   Vector covering;

@@ -16,12 +16,18 @@
 //
 // convex (two phases, DESIGN §1.4), by the interior-point QP:
 //   1. min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ (Jn v* + max(φ,0)/Δt)             (no friction)
-//   2. κ = eᵀλn;  min ½ λᵀ W λ + λᵀ J v* + ρ λnᵀ diag(exp(φ)) λn
+//   2. κ = eᵀλn;  min ½ λᵀ W λ + λᵀ J v* + ρ λnᵀ diag(exp(φ)) diag(Wnn) λn
 //      s.t. Jn v⁺ + max(φ,0)/Δt ≥ 0, λn ≥ 0, eᵀλn ≤ κ, |λt| ≤ μ λn.
 //   Phase 1's solution with λt = 0 is feasible for phase 2, so phase 2 always has one.
-//   ρ (default 1, the seeds' model; units of W, i.e. 1/kg) makes λn unique with redundant
-//   contacts but also makes contact soft: a block that Coulomb friction holds creeps
-//   (measured in tests/dynamics_incline_test.cpp); ρ → 0 recovers maximum dissipation.
+//   DESIGN writes the last term as λnᵀ diag(exp(φ)) λn, which is not unit-consistent
+//   (λ in N·s, W in 1/kg); it is scaled here by diag(Wnn) with a dimensionless weight ρ
+//   (default 1e-3, SimulatorSettings::convex_rho). Measured: with the unscaled term (ρ = 1
+//   in 1/kg) a pile of 20 kg polygons gained up to 0.9% of its energy in one step; with
+//   the scaled term it dissipates. The term makes λn unique with redundant contacts but
+//   also makes contact slightly soft: a block that Coulomb friction holds creeps (measured
+//   in tests/dynamics_incline_test.cpp); ρ → 0 recovers maximum dissipation.
+//   κ is loosened by 1e-6 relative (convex_model.cpp) so that the interior point has an
+//   interior; where no contact approaches (b ≥ 0) the answer λ = 0 is returned directly.
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/models/contact_system.hpp>
@@ -57,6 +63,6 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
 
 /// Solves the convex two-phase model.
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
-                                   double rho = 1.0);
+                                   double rho = 1e-3);
 
 }  // namespace lcprelax

@@ -2,7 +2,8 @@
 // Semi-implicit, velocity-level time stepping of a 2-D scene (DESIGN §1.4).
 //
 // One step of length Δt:
-//   1. contacts with gap φ ≤ margin (contact/collision.hpp);
+//   1. contacts with gap φ ≤ margin + 2·Δt·max(|v| + |ω| r) over the bodies (a speculative
+//      margin, so that no pair can close more than its gap in one step unseen);
 //   2. islands of touching dynamic bodies, each solved as its own contact problem by the
 //      scene's model (contact_step.hpp), in parallel over islands with OpenMP; bodies
 //      without contacts fly freely (v⁺ = v + Δt·g);
@@ -31,7 +32,7 @@ struct SimulatorSettings {
   LemkeSettings lemke;       ///< for the lcp model and the position projection
   QpSettings qp;             ///< for the convex model (eps_abs 1e-8 by default here)
   double penetration_slop = 1e-4;  ///< m: allowed overlap before projection
-  double convex_rho = 1.0;   ///< weight ρ of the convex model's λnᵀdiag(exp(φ))λn term
+  double convex_rho = 1e-3;  ///< weight ρ of the convex model's λnᵀdiag(exp(φ))diag(Wnn)λn term
   bool post_stabilization = true;
   bool warm_start = true;
   int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
