@@ -10,6 +10,14 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Relative loosening of phase 2's bound eᵀλn ≤ κ, tried in turn until the interior point
+// solves phase 2. The bound binds while a body slides (more normal impulse would buy more
+// friction), so the loosening is an error of up to that fraction of the friction impulse:
+// 1e-6 first (exact to the incline test's 1e-5); resting pyramids (tests/
+// dynamics_rest_test.cpp: statically indeterminate, W singular, every normal row active)
+// leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
+constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
+
 bool accepted(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
 
 SparseMatrix upper(const SparseMatrix& A) {
@@ -50,10 +58,10 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
     out.message = std::string("phase 1: ") + to_string(r1.info.status) + ": " + r1.info.message;
     return out;
   }
-  // κ = eᵀλn of phase 1, loosened by 1e-6 relative (plus 1e-12 N·s): with the normal rows
+  // κ = eᵀλn of phase 1, loosened (kKappaSlack, plus 1e-12 N·s): with the normal rows
   // active, eᵀλn ≤ κ exactly makes phase 2's feasible set a point in λn, which leaves the
   // interior point no interior (measured: "no progress" failures on 1-2 contact islands).
-  const double kappa = r1.x.cwiseMax(0.0).sum() * (1.0 + 1e-6) + 1e-12;
+  const double kappa = r1.x.cwiseMax(0.0).sum();
 
   // Phase 2: friction, bounded by κ, with the ρ·diag(exp(φ))·diag(Wnn) term on λn.
   QpProblem p2(n);
@@ -80,19 +88,27 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   p2.l = Vector::Constant(m, -kInf);
   p2.u = Vector::Constant(m, kInf);
   p2.l.head(nc) = -bn;
-  p2.u(nc) = kappa;
   for (Index f = 0; f < nf; ++f) {
     p2.u(nc + 1 + 2 * f) = 0.0;
     p2.l(nc + 2 + 2 * f) = 0.0;
   }
   p2.xl.head(nc).setZero();
-  QpSolver qp2(settings);
-  qp2.setup(p2);
-  const QpResult& r2 = qp2.solve();
-  out.work += r2.info.iterations;
+  QpResult r2;
+  for (double slack : kKappaSlack) {
+    p2.u(nc) = kappa * (1.0 + slack) + 1e-12;
+    QpSolver qp2(settings);
+    qp2.setup(p2);
+    r2 = qp2.solve();
+    out.work += r2.info.iterations;
+    if (accepted(r2.info.status)) break;
+  }
   out.residual = std::max(r2.info.primal_residual, r2.info.dual_residual);
   if (!accepted(r2.info.status)) {
+    // Not solved; phase 1's frictionless answer is returned with it (contact_step.hpp).
     out.message = std::string("phase 2: ") + to_string(r2.info.status) + ": " + r2.info.message;
+    out.lambda_n = r1.x.cwiseMax(0.0);
+    out.lambda_t = Vector::Zero(nf);
+    out.v_next = s.v_star + s.minv.cwiseProduct(s.Jn.transpose() * out.lambda_n);
     return out;
   }
   out.ok = true;

@@ -3,6 +3,8 @@
 #include <lcprelax/models/contact_step.hpp>
 
 #include <algorithm>
+#include <cstdint>
+#include <string>
 
 namespace lcprelax {
 
@@ -44,27 +46,79 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
   return lcp;
 }
 
+namespace {
+
+// Deterministic pseudo-random u ∈ [½, 1) for LCP row i and pattern `seed` (splitmix64):
+// distinct, and the same for every run and thread count.
+double perturbation_weight(Index i, int seed) {
+  std::uint64_t x = static_cast<std::uint64_t>(i) + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(seed + 1);
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  x ^= x >> 31;
+  return 0.5 + 0.5 * static_cast<double>(x >> 11) * 0x1.0p-53;
+}
+
+}  // namespace
+
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
-  // Degenerate piles (redundant and wedged contacts) rely on Lemke's retries
-  // (LemkeSettings::covering_retries, regularization_retries).
-  LemkeSolver solver(settings);
-  solver.setup(lcp.M, lcp.q);
-  if (static_cast<Index>(warm.size()) == lcp.q.size()) solver.warm_start(warm);
-  const LcpResult& r = solver.solve();
-  const long pivots = r.info.pivots;
+  const Index n = lcp.q.size();
+  const bool has_warm = static_cast<Index>(warm.size()) == n;
+  // Attempts, cheapest first (contact_step.hpp). Lemke's own retries only in the last one;
+  // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
+  LemkeSettings plain = settings;
+  plain.covering_retries = 0;
+  plain.regularization_retries = 0;
+  LemkeSettings warm_only = plain;
+  warm_only.max_pivots = 1;
+  std::vector<LemkeSolver> solvers;  // kept alive: r points into the accepted one
+  solvers.reserve(2 * kLcpPerturbationSeeds + 3);
+  long pivots = 0;
+  const LcpResult* r = nullptr;
+  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LcpResult& {
+    solvers.emplace_back(ls);
+    solvers.back().setup(lcp.M, q);
+    if (basis) solvers.back().warm_start(*basis);
+    const LcpResult& res = solvers.back().solve();
+    pivots += res.info.pivots;
+    return res;
+  };
+  auto solved = [](const LcpResult* x) { return x && x->info.status == LcpStatus::solved; };
+  // 1. Exact: the warm basis on q, else cold.
+  r = &attempt(plain, lcp.q, has_warm ? &warm : nullptr);
+  // 2. Perturbed q + δu (warm basis, else cold), polished on q.
+  bool perturbed = false;
+  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r); ++seed, delta *= 10.0) {
+    Vector q = lcp.q;
+    for (Index i = 0; i < n; ++i) q(i) += delta * perturbation_weight(i, seed);
+    const LcpResult& rp = attempt(plain, q, has_warm ? &warm : nullptr);
+    if (!solved(&rp)) continue;
+    const LcpResult& polished = attempt(warm_only, lcp.q, &rp.z_basic);
+    perturbed = !solved(&polished);
+    r = perturbed ? &rp : &polished;
+  }
+  // 3. The caller's settings (covering-vector and M + εI retries).
+  if (!solved(r)) r = &attempt(settings, lcp.q, nullptr);
+
   ContactSolution out;
-  out.ok = r.info.status == LcpStatus::solved;
-  out.message = r.info.message;
+  out.ok = solved(r);
+  out.message = !out.ok ? "lcp: " + r->info.message
+                        : perturbed ? std::string("solved on a perturbed q (polishing on q failed)") : r->info.message;
   out.work = pivots;
-  out.residual = r.info.complementarity;
-  out.z_basic = r.z_basic;
-  out.warm_started = r.info.warm_started;
-  if (!out.ok) return out;
-  out.lambda_n = r.z.head(nc);
-  out.lambda_t = r.z.segment(nc, nf) - r.z.segment(nc + nf, nf);
+  out.z_basic = r->z_basic;
+  out.warm_started = pivots == 0 && r->info.warm_started;  // attempt 1 from its warm basis
+  if (!out.ok) {
+    out.residual = r->info.complementarity;
+    return out;
+  }
+  // Residual on the unperturbed LCP (a perturbed solution's is about δ·‖q‖∞ there).
+  const Vector w = lcp.M * r->z + lcp.q;
+  out.residual = n ? r->z.cwiseMin(w).cwiseAbs().maxCoeff() : 0.0;
+  out.lambda_n = r->z.head(nc);
+  out.lambda_t = r->z.segment(nc, nf) - r->z.segment(nc + nf, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;
   out.v_next = s.v_star + s.minv.cwiseProduct(impulse);
   return out;

@@ -1,5 +1,6 @@
 // Time stepping over islands with warm starts and post-stabilization (simulator.hpp).
 #include <lcprelax/contact/collision.hpp>
+#include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/sparse/errors.hpp>
@@ -7,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 
 #ifdef LCPRELAX_HAS_OPENMP
 #include <omp.h>
@@ -70,16 +72,46 @@ double Simulator::potential_energy() const {
 
 void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats) {
   const double dt = scene_.settings.dt, slop = settings_.penetration_slop;
+  const Index nc = s.num_contacts();
+  if (nc == 0) return;
   const Vector phi_next = s.phi + dt * (s.Jn * v_next);
-  if (s.num_contacts() == 0 || phi_next.minCoeff() >= -slop) return;
+  if (phi_next.minCoeff() >= -slop) return;
+  const Vector bound = phi_next + Vector::Constant(nc, slop);  // Jn Δq + bound ≥ 0
+  // Dual: the LCP 0 ≤ z ⊥ Wnn z + bound ≥ 0, Δq = M⁻¹Jnᵀz (exact, by Lemke).
   const SparseMatrix JnMinv = s.Jn * s.minv.asDiagonal();
   SparseMatrix Wnn = JnMinv * s.Jn.transpose();
   Wnn.makeCompressed();
-  LemkeSolver lemke(settings_.lemke);
-  lemke.setup(Wnn, phi_next + Vector::Constant(phi_next.size(), slop));
+  LemkeSettings plain = settings_.lemke;  // no retries: the interior point below is the fallback
+  plain.covering_retries = 0;
+  plain.regularization_retries = 0;
+  LemkeSolver lemke(plain);
+  lemke.setup(Wnn, bound);
   const LcpResult& r = lemke.solve();
-  if (r.info.status != LcpStatus::solved) return;  // leave positions as they are
-  const Vector dq = s.minv.cwiseProduct(s.Jn.transpose() * r.z);
+  Vector dq;
+  if (r.info.status == LcpStatus::solved) {
+    dq = s.minv.cwiseProduct(s.Jn.transpose() * r.z);
+  } else {
+    // Primal, by the interior point: min ½ΔqᵀMΔq s.t. Jn Δq ≥ −bound. Strictly convex and
+    // strictly feasible, so it is solved where Lemke fails on a singular Wnn (more
+    // contacts than degrees of freedom, e.g. a pyramid whose boxes touch side to side).
+    const Index nv = s.num_dofs();
+    QpProblem p(nv);
+    std::vector<Triplet> t;
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+    p.P.resize(nv, nv);
+    p.P.setFromTriplets(t.begin(), t.end());
+    p.G = s.Jn;
+    p.l = -bound;
+    p.u = Vector::Constant(nc, std::numeric_limits<double>::infinity());
+    QpSolver qp(settings_.qp);
+    qp.setup(p);
+    const QpResult& rq = qp.solve();
+    if (rq.info.status != QpStatus::solved && rq.info.status != QpStatus::solved_inaccurate) {
+      ++stats.failed_projections;  // positions stay as they are
+      return;
+    }
+    dq = rq.x;
+  }
   for (std::size_t k = 0; k < s.bodies.size(); ++k) scene_.world.bodies[s.bodies[k]].pose += dq.segment<3>(3 * k);
   ++stats.projected_islands;
 }
@@ -93,13 +125,20 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   auto t0 = std::chrono::steady_clock::now();
   // Speculative margin: contacts enter before they can close during this step, so fast
   // bodies do not pass the margin in one step and penetrate (the gap term φ/Δt then lets
-  // them close exactly). Each body can move |v| + |ω|·r per unit time; two bodies twice.
+  // them close exactly). Each body can move |v| + |ω|·r per unit time, with v and ω the
+  // larger of the current and the free velocity v* = v + Δt·M⁻¹f (gravity and applied
+  // forces act within the step: a body at rest falls g·Δt² in its first step, 9.8 cm at
+  // Δt = 0.1 s, measured in tests/dynamics_penetration_test.cpp); two bodies twice.
   double fastest = 0.0;
-  for (const RigidBody& b : world.bodies) {
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    const RigidBody& b = world.bodies[i];
     if (b.is_static) continue;
     double r = 0.0;
     for (const Vec2& p : b.shape.vertices) r = std::max(r, p.norm());
-    fastest = std::max(fastest, b.velocity.head<2>().norm() + std::abs(b.velocity(2)) * r);
+    Vec3 f(b.mass * world.gravity.x(), b.mass * world.gravity.y(), 0.0);
+    if (!applied.empty()) f += applied[i];
+    const Vec3 free = b.velocity + dt * Vec3(f(0) / b.mass, f(1) / b.mass, f(2) / b.inertia);
+    for (const Vec3& v : {b.velocity, free}) fastest = std::max(fastest, v.head<2>().norm() + std::abs(v(2)) * r);
   }
   const double margin = scene_.settings.margin + 2.0 * fastest * dt;
   contacts_ = find_contacts(world, CollisionSettings{margin});
@@ -144,15 +183,15 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       } else {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
       }
-      if (!wk.solution.ok) {  // fallback: the convex model (interior point)
+      if (!wk.solution.ok && lcp) {  // fallback: the convex model (interior point)
         ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
-        fallback.message = wk.solution.message;
+        fallback.message = wk.solution.message + (fallback.ok ? "; convex model used" : "; convex fallback: " + fallback.message);
         fallback.residual = std::max(fallback.residual, wk.solution.residual);
-        const bool fallback_ok = fallback.ok;
         wk.solution = std::move(fallback);
         wk.solution.ok = false;
-        if (!fallback_ok) wk.solution.v_next = s.v_star;
       }
+      // Last resort: a failed convex solve's frictionless phase-1 velocities, else v*.
+      if (!wk.solution.ok && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;
     } catch (const std::exception& e) {
       wk.error = e.what();
     }

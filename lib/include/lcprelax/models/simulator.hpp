@@ -2,16 +2,18 @@
 // Semi-implicit, velocity-level time stepping of a 2-D scene (DESIGN §1.4).
 //
 // One step of length Δt:
-//   1. contacts with gap φ ≤ margin + 2·Δt·max(|v| + |ω| r) over the bodies (a speculative
-//      margin, so that no pair can close more than its gap in one step unseen);
+//   1. contacts with gap φ ≤ margin + 2·Δt·max(|v| + |ω| r) over the bodies and over their
+//      current and free velocities v, v* = v + Δt·M⁻¹f (a speculative margin, so that no
+//      pair can close more than its gap in one step unseen);
 //   2. islands of touching dynamic bodies, each solved as its own contact problem by the
 //      scene's model (contact_step.hpp), in parallel over islands with OpenMP; bodies
 //      without contacts fly freely (v⁺ = v + Δt·g);
 //   3. positions q⁺ = q + Δt·v⁺ (symplectic Euler);
 //   4. post-stabilization (Cline & Pai 2003): where the linearized gap φ + Δt·Jn v⁺ falls
 //      below −slop, positions are projected by  min ½ΔqᵀMΔq  s.t.  Jn Δq + φ⁺ + slop ≥ 0,
-//      an LCP in Wnn solved by Lemke; velocities are untouched, so penetration is removed
-//      without adding kinetic energy.
+//      an LCP in Wnn solved by Lemke (where Lemke fails on a singular Wnn, the primal QP by
+//      the interior point); velocities are untouched, so penetration is removed without
+//      adding kinetic energy.
 // Warm starts: each contact is keyed by (body a, body b, static shape, ordinal within the
 // pair); the final Lemke basis of its unknowns is reused next step.
 //
@@ -47,9 +49,13 @@ struct StepStats {
   int warm_started_islands = 0;
   double max_residual = 0.0;   ///< largest contact-solve residual (contact_step.hpp)
   double max_penetration = 0.0;  ///< largest −φ ≥ 0 at the start of the step (m)
-  int failed_islands = 0;      ///< islands whose solve failed (then solved frictionless)
+  /// Islands whose solve failed. Fallbacks: an lcp island takes the convex model's
+  /// answer, a convex island whose phase 2 failed its phase-1 (frictionless) answer; with
+  /// neither, v⁺ = v* (no contact impulse).
+  int failed_islands = 0;
   std::string first_failure;   ///< message of the first failed solve
-  int projected_islands = 0;
+  int projected_islands = 0;     ///< islands whose positions the post-stabilization moved
+  int failed_projections = 0;    ///< islands whose projection failed (positions left as they were)
   double collision_seconds = 0.0, solve_seconds = 0.0;
 };
 
