@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace lcprelax::cli {
@@ -43,6 +44,13 @@ Command add_fc2d_command(CLI::App& parent);
 
 /// `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex] [--threads T] [--picture OUT] ...`.
 Command add_pile_command(CLI::App& parent);
+
+/// `lcprelax learn block|polygon ...` (DESIGN §4). Each learning application lives in its
+/// own cmd_learn_<name>.cpp and registers a factory that adds its sub-subcommand to the
+/// `learn` app, by a namespace-scope `const bool registered = register_learn_application(f);`.
+using LearnApplicationFactory = Command (*)(CLI::App& learn);
+bool register_learn_application(LearnApplicationFactory factory);
+Command add_learn_command(CLI::App& parent);
 
 /// Adds the `--json` flag every subcommand accepts.
 void add_json_flag(CLI::App& command, bool& json);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       add_lcp_command(app),
       add_fc2d_command(app),
       add_pile_command(app),
+      add_learn_command(app),
   };
 
   try {

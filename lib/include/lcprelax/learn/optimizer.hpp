@@ -1,0 +1,52 @@
+#pragma once
+// First-order optimizers for the free parameters ξ (parameters.hpp).
+//
+//   sgd  (with momentum, the seeds' choice):  m ← β m + g,   ξ ← ξ − α_k m
+//   adam (Kingma & Ba 2015):  m ← β1 m + (1−β1) g,  s ← β2 s + (1−β2) g²,
+//                             ξ ← ξ − α_k m̂ / (√ŝ + ε),  m̂ = m/(1−β1ᵏ), ŝ = s/(1−β2ᵏ)
+// Learning-rate schedule α_k = α / (1 + decay·k), k = steps taken so far.
+// Gradient clipping: g is scaled by clip_norm/‖g‖₂ where ‖g‖₂ > clip_norm.
+// A non-finite gradient throws std::runtime_error instead of poisoning ξ.
+#include <lcprelax/sparse/types.hpp>
+
+#include <limits>
+#include <string>
+
+namespace lcprelax::learn {
+
+enum class OptimizerKind { sgd, adam };
+const char* to_string(OptimizerKind k);
+/// "sgd" or "adam"; throws InputError otherwise.
+OptimizerKind parse_optimizer_kind(const std::string& s);
+
+struct OptimizerSettings {
+  OptimizerKind kind = OptimizerKind::sgd;
+  double learning_rate = 1e-2;  ///< α > 0
+  double momentum = 0.9;        ///< β ∈ [0, 1), sgd
+  double beta1 = 0.9;           ///< adam, ∈ [0, 1)
+  double beta2 = 0.999;         ///< adam, ∈ [0, 1)
+  double epsilon = 1e-8;        ///< adam, > 0
+  double decay = 0.0;           ///< schedule α/(1 + decay·k), ≥ 0
+  double clip_norm = std::numeric_limits<double>::infinity();  ///< > 0
+  /// Empty if valid, else what is wrong.
+  std::string validate() const;
+};
+
+class Optimizer {
+ public:
+  /// Throws InputError on invalid settings.
+  explicit Optimizer(const OptimizerSettings& settings = {});
+  /// One update of ξ by the gradient ∂ℓ/∂ξ (sizes must match; state is sized on first use).
+  void step(Vector& xi, const Vector& gradient);
+  void reset();
+  long steps() const { return steps_; }
+  double learning_rate() const;  ///< α_k for the next step
+  const OptimizerSettings& settings() const { return settings_; }
+
+ private:
+  OptimizerSettings settings_;
+  Vector m_, s_;
+  long steps_ = 0;
+};
+
+}  // namespace lcprelax::learn
