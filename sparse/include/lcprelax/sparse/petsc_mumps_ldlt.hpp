@@ -1,0 +1,57 @@
+#pragma once
+// Symmetric-indefinite LDLᵀ of a sparse matrix by MUMPS through PETSc (MatGetFactor with
+// MATSOLVERMUMPS and MAT_FACTOR_CHOLESKY; Amestoy, Duff, L'Excellent & Koster 2001,
+// "A fully asynchronous multifrontal solver using distributed dynamic scheduling", SIAM
+// J. Matrix Anal. Appl. 23(1)). The KKT backend alternative to CholmodLdlt
+// (kkt/qp_settings.hpp, KktBackend).
+//
+// Same contract as every Factorization (factorization.hpp): analyze() once per pattern
+// (the upper triangle is read, entries below the diagonal ignored), factorize() on new
+// values of that pattern (numeric refactorization only: the MUMPS analysis is kept),
+// solve() with many right-hand sides, failures as statuses. MUMPS pivots (1×1 and 2×2),
+// so any nonsingular symmetric matrix factorizes; inertia() reports the signs of D from
+// MUMPS (INFOG(12) negative pivots; null pivots detected with ICNTL(24) = 1 and a
+// threshold of 1e-14·‖A‖ count as zero_pivot).
+//
+// Communicator:
+//   distributed = false: PETSC_COMM_SELF: each process factorizes its own matrices (the
+//     data-parallel learning case: every rank solves different problems);
+//   distributed = true:  PETSC_COMM_WORLD: the matrix is distributed by rows over all
+//     ranks and factorized by MUMPS in parallel. Every rank must call analyze/factorize/
+//     solve collectively with the same matrix and right-hand sides; solve() returns the
+//     full solution on every rank.
+// Not thread-safe: one PetscMumpsLdlt per process at a time in a parallel region is not
+// supported by PETSc; lcprelax's batch solvers use it from one thread.
+// Built without PETSc, analyze() returns invalid_input with a message saying so.
+#include <lcprelax/sparse/cholmod_ldlt.hpp>
+#include <lcprelax/sparse/factorization.hpp>
+
+#include <memory>
+
+namespace lcprelax::sparse {
+
+class PetscMumpsLdlt final : public Factorization {
+ public:
+  explicit PetscMumpsLdlt(bool distributed = false);
+  ~PetscMumpsLdlt() override;
+  PetscMumpsLdlt(const PetscMumpsLdlt&) = delete;
+  PetscMumpsLdlt& operator=(const PetscMumpsLdlt&) = delete;
+
+  FactorResult analyze(const SparseMatrix& A) override;
+  FactorResult factorize(const SparseMatrix& A) override;
+  FactorResult solve(Eigen::Ref<DenseMatrix> B) const override;
+  long factor_nnz() const override;
+  Index rows() const override;
+  const char* name() const override { return distributed_ ? "mumps_ldlt_distributed" : "mumps_ldlt"; }
+
+  /// Signs of D in the last numeric factorization (from MUMPS).
+  Inertia inertia() const;
+  bool distributed() const { return distributed_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  bool distributed_;
+};
+
+}  // namespace lcprelax::sparse

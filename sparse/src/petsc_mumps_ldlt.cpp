@@ -1,0 +1,206 @@
+// MUMPS LDLᵀ through PETSc (petsc_mumps_ldlt.hpp).
+#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/sparse/petsc_mumps_ldlt.hpp>
+
+#include "matrix_checks.hpp"
+
+#ifdef LCPRELAX_HAS_PETSC
+#include <petscmat.h>
+#endif
+
+#include <string>
+#include <vector>
+
+namespace lcprelax::sparse {
+
+#ifdef LCPRELAX_HAS_PETSC
+
+namespace {
+
+FactorResult petsc_failure(PetscErrorCode e, const char* what) {
+  const char* text = nullptr;
+  PetscErrorMessage(e, &text, nullptr);
+  return detail::make_result(e == PETSC_ERR_MEM ? FactorStatus::out_of_memory : FactorStatus::internal_error,
+                             std::string("PETSc/MUMPS ") + what + ": " + (text ? text : "error ") +
+                                 " (PETSc error " + std::to_string(static_cast<int>(e)) + ")");
+}
+
+#define LCPRELAX_PETSC(call, what)                 \
+  do {                                             \
+    const PetscErrorCode e_ = (call);              \
+    if (e_) return petsc_failure(e_, what);        \
+  } while (0)
+
+}  // namespace
+
+struct PetscMumpsLdlt::Impl {
+  MPI_Comm comm = MPI_COMM_SELF;
+  Mat A = nullptr, F = nullptr;
+  Vec b = nullptr, x = nullptr, x_all = nullptr;
+  VecScatter to_all = nullptr;
+  detail::Pattern pattern;
+  PetscInt n = 0, lo = 0, hi = 0;
+  bool factored = false;
+  long nnz = 0;
+  Inertia inertia;
+
+  ~Impl() { destroy(); }
+  void destroy() {
+    if (to_all) VecScatterDestroy(&to_all);
+    if (x_all) VecDestroy(&x_all);
+    if (x) VecDestroy(&x);
+    if (b) VecDestroy(&b);
+    if (F) MatDestroy(&F);
+    if (A) MatDestroy(&A);
+    factored = false;
+    nnz = 0;
+  }
+
+  // The full symmetric matrix from A's upper triangle, rows [lo, hi) inserted.
+  FactorResult fill(const SparseMatrix& upper) {
+    const SparseMatrix full = SparseMatrix(upper.selfadjointView<Eigen::Upper>());
+    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows = full;
+    LCPRELAX_PETSC(MatZeroEntries(A), "MatZeroEntries");
+    for (PetscInt r = lo; r < hi; ++r) {
+      const int start = rows.outerIndexPtr()[r], count = rows.outerIndexPtr()[r + 1] - start;
+      LCPRELAX_PETSC(MatSetValues(A, 1, &r, count, rows.innerIndexPtr() + start, rows.valuePtr() + start, INSERT_VALUES),
+                     "MatSetValues");
+    }
+    LCPRELAX_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    LCPRELAX_PETSC(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    return {};
+  }
+};
+
+PetscMumpsLdlt::PetscMumpsLdlt(bool distributed) : impl_(std::make_unique<Impl>()), distributed_(distributed) {}
+PetscMumpsLdlt::~PetscMumpsLdlt() = default;
+
+FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
+  ensure_petsc_initialized();
+  Impl& m = *impl_;
+  m.destroy();
+  m.pattern.clear();
+  const detail::CompressedRef ref(A_in);
+  const SparseMatrix& A = ref.get();
+  if (auto r = detail::check_square(A); !r.ok()) return r;
+  if (auto r = detail::check_finite(A); !r.ok()) return r;
+  m.comm = distributed_ ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
+  m.n = A.rows();
+  PetscInt local = PETSC_DECIDE, global = m.n;
+  LCPRELAX_PETSC(PetscSplitOwnership(m.comm, &local, &global), "PetscSplitOwnership");
+  LCPRELAX_PETSC(MPI_Scan(&local, &m.hi, 1, MPIU_INT, MPI_SUM, m.comm) ? PETSC_ERR_MPI : 0, "MPI_Scan");
+  m.lo = m.hi - local;
+
+  // Preallocation of the owned rows of the full symmetric pattern.
+  const SparseMatrix full = SparseMatrix(A.selfadjointView<Eigen::Upper>());
+  const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows = full;
+  std::vector<PetscInt> d_nnz(static_cast<std::size_t>(local), 0), o_nnz(static_cast<std::size_t>(local), 0);
+  for (PetscInt r = m.lo; r < m.hi; ++r)
+    for (int k = rows.outerIndexPtr()[r]; k < rows.outerIndexPtr()[r + 1]; ++k) {
+      const int c = rows.innerIndexPtr()[k];
+      ++(c >= m.lo && c < m.hi ? d_nnz : o_nnz)[static_cast<std::size_t>(r - m.lo)];
+    }
+  LCPRELAX_PETSC(MatCreateAIJ(m.comm, local, local, m.n, m.n, 0, d_nnz.data(), 0, o_nnz.data(), &m.A), "MatCreateAIJ");
+  LCPRELAX_PETSC(MatSetOption(m.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+  LCPRELAX_PETSC(MatSetOption(m.A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
+  if (auto r = m.fill(A); !r.ok()) return r;
+
+  LCPRELAX_PETSC(MatGetFactor(m.A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &m.F), "MatGetFactor(mumps, cholesky)");
+  LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 24, 1), "ICNTL(24)");  // detect null pivots
+  IS rowperm = nullptr, colperm = nullptr;
+  LCPRELAX_PETSC(MatGetOrdering(m.A, MATORDERINGNATURAL, &rowperm, &colperm), "MatGetOrdering");
+  MatFactorInfo info;
+  MatFactorInfoInitialize(&info);
+  const PetscErrorCode e = MatCholeskyFactorSymbolic(m.F, m.A, rowperm, &info);
+  ISDestroy(&rowperm);
+  ISDestroy(&colperm);
+  LCPRELAX_PETSC(e, "symbolic factorization");
+  PetscInt estimate = 0;
+  MatMumpsGetInfog(m.F, 20, &estimate);
+  m.nnz = estimate >= 0 ? static_cast<long>(estimate) : -static_cast<long>(estimate) * 1000000L;
+
+  LCPRELAX_PETSC(MatCreateVecs(m.A, &m.x, &m.b), "MatCreateVecs");
+  LCPRELAX_PETSC(VecScatterCreateToAll(m.x, &m.to_all, &m.x_all), "VecScatterCreateToAll");
+  m.pattern.assign(A);
+  return {};
+}
+
+FactorResult PetscMumpsLdlt::factorize(const SparseMatrix& A_in) {
+  Impl& m = *impl_;
+  if (!m.F) return detail::make_result(FactorStatus::not_analyzed, "factorize() before analyze()");
+  const detail::CompressedRef ref(A_in);
+  const SparseMatrix& A = ref.get();
+  if (auto r = detail::check_pattern(m.pattern, A); !r.ok()) return r;
+  if (auto r = detail::check_finite(A); !r.ok()) return r;
+  m.factored = false;
+  if (auto r = m.fill(A); !r.ok()) return r;
+  MatFactorInfo info;
+  MatFactorInfoInitialize(&info);
+  ++numeric_factorizations_;
+  const PetscErrorCode e = MatCholeskyFactorNumeric(m.F, m.A, &info);
+  PetscInt infog1 = 0, negative = 0, null_pivots = 0, entries = 0;
+  MatMumpsGetInfog(m.F, 1, &infog1);
+  if (e || infog1 < 0) {
+    if (infog1 == -9 || infog1 == -13) return detail::make_result(FactorStatus::out_of_memory, "MUMPS: out of memory");
+    if (infog1 == -10) return detail::make_result(FactorStatus::zero_pivot, "MUMPS: numerically singular matrix");
+    if (e) return petsc_failure(e, "numeric factorization");
+    return detail::make_result(FactorStatus::internal_error, "MUMPS INFOG(1) = " + std::to_string(infog1));
+  }
+  MatMumpsGetInfog(m.F, 12, &negative);
+  MatMumpsGetInfog(m.F, 28, &null_pivots);
+  MatMumpsGetInfog(m.F, 29, &entries);
+  m.nnz = entries >= 0 ? static_cast<long>(entries) : -static_cast<long>(entries) * 1000000L;
+  m.inertia.negative = negative;
+  m.inertia.zero = null_pivots;
+  m.inertia.positive = static_cast<Index>(m.n) - negative - null_pivots;
+  if (null_pivots > 0)
+    return detail::make_result(FactorStatus::zero_pivot, "MUMPS found " + std::to_string(null_pivots) + " null pivot(s)");
+  m.factored = true;
+  return {};
+}
+
+FactorResult PetscMumpsLdlt::solve(Eigen::Ref<DenseMatrix> B) const {
+  Impl& m = *impl_;
+  if (!m.factored) return detail::make_result(FactorStatus::not_analyzed, "solve() without a successful factorize()");
+  if (auto r = detail::check_rhs(static_cast<Index>(m.n), static_cast<Index>(B.rows())); !r.ok()) return r;
+  for (Index c = 0; c < B.cols(); ++c) {
+    PetscScalar* bv = nullptr;
+    LCPRELAX_PETSC(VecGetArray(m.b, &bv), "VecGetArray");
+    for (PetscInt i = m.lo; i < m.hi; ++i) bv[i - m.lo] = B(i, c);
+    LCPRELAX_PETSC(VecRestoreArray(m.b, &bv), "VecRestoreArray");
+    LCPRELAX_PETSC(MatSolve(m.F, m.b, m.x), "MatSolve");
+    LCPRELAX_PETSC(VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    LCPRELAX_PETSC(VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* xv = nullptr;
+    LCPRELAX_PETSC(VecGetArrayRead(m.x_all, &xv), "VecGetArrayRead");
+    for (PetscInt i = 0; i < m.n; ++i) B(i, c) = xv[i];
+    LCPRELAX_PETSC(VecRestoreArrayRead(m.x_all, &xv), "VecRestoreArrayRead");
+  }
+  return {};
+}
+
+long PetscMumpsLdlt::factor_nnz() const { return impl_->nnz; }
+Index PetscMumpsLdlt::rows() const { return static_cast<Index>(impl_->n); }
+Inertia PetscMumpsLdlt::inertia() const { return impl_->inertia; }
+
+#else  // built without PETSc
+
+struct PetscMumpsLdlt::Impl {};
+PetscMumpsLdlt::PetscMumpsLdlt(bool distributed) : impl_(std::make_unique<Impl>()), distributed_(distributed) {}
+PetscMumpsLdlt::~PetscMumpsLdlt() = default;
+namespace {
+FactorResult unavailable() {
+  return detail::make_result(FactorStatus::invalid_input,
+                             "the MUMPS backend needs PETSc: lcprelax was built with LCPRELAX_WITH_PETSC=OFF");
+}
+}  // namespace
+FactorResult PetscMumpsLdlt::analyze(const SparseMatrix&) { return unavailable(); }
+FactorResult PetscMumpsLdlt::factorize(const SparseMatrix&) { return unavailable(); }
+FactorResult PetscMumpsLdlt::solve(Eigen::Ref<DenseMatrix>) const { return unavailable(); }
+long PetscMumpsLdlt::factor_nnz() const { return 0; }
+Index PetscMumpsLdlt::rows() const { return 0; }
+Inertia PetscMumpsLdlt::inertia() const { return {}; }
+
+#endif
+
+}  // namespace lcprelax::sparse
