@@ -1,5 +1,6 @@
 // Parallel per-sample evaluation with a fixed-order reduction (batch.hpp).
 #include <lcprelax/learn/batch.hpp>
+#include <lcprelax/sparse/mpi_session.hpp>
 
 #include <exception>
 
@@ -18,8 +19,11 @@ int resolve_threads(int threads) {
 #endif
 }
 
-BatchResult evaluate_batch(const std::vector<Index>& samples, Index num_params, int threads,
-                           const SampleFunction& f) {
+namespace {
+
+// Evaluates f at the positions k of `samples` with mine[k] (all when mine is empty).
+std::vector<SampleResult> evaluate_slots(const std::vector<Index>& samples, Index num_params, int threads,
+                                         const SampleFunction& f, const std::vector<char>& mine) {
   const int n = static_cast<int>(samples.size());
   std::vector<SampleResult> slots(samples.size());
   const int nthreads = resolve_threads(threads);
@@ -31,6 +35,7 @@ BatchResult evaluate_batch(const std::vector<Index>& samples, Index num_params, 
 #ifdef LCPRELAX_HAS_OPENMP
     thread = omp_get_thread_num();
 #endif
+    if (!mine.empty() && !mine[static_cast<std::size_t>(k)]) continue;
     SampleResult& slot = slots[static_cast<std::size_t>(k)];
     try {
       slot = f(samples[static_cast<std::size_t>(k)], thread);
@@ -45,6 +50,11 @@ BatchResult evaluate_batch(const std::vector<Index>& samples, Index num_params, 
     }
   }
   (void)nthreads;
+  return slots;
+}
+
+BatchResult reduce_in_order(const std::vector<Index>& samples, Index num_params, const std::vector<SampleResult>& slots) {
+  const int n = static_cast<int>(samples.size());
   BatchResult out;
   out.gradient = Vector::Zero(num_params);
   for (int k = 0; k < n; ++k) {  // fixed order: bitwise identical for every thread count
@@ -58,6 +68,46 @@ BatchResult evaluate_batch(const std::vector<Index>& samples, Index num_params, 
     ++out.evaluated;
   }
   return out;
+}
+
+}  // namespace
+
+BatchResult evaluate_batch(const std::vector<Index>& samples, Index num_params, int threads,
+                           const SampleFunction& f) {
+  return reduce_in_order(samples, num_params, evaluate_slots(samples, num_params, threads, f, {}));
+}
+
+BatchResult evaluate_batch_distributed(const std::vector<Index>& samples, Index num_params, int threads,
+                                       const SampleFunction& f) {
+  const int ranks = sparse::mpi_size(), rank = sparse::mpi_rank();
+  if (ranks <= 1) return evaluate_batch(samples, num_params, threads, f);
+  const std::size_t n = samples.size(), width = static_cast<std::size_t>(num_params) + 2;  // ok, loss, gradient
+  std::vector<char> mine(n);
+  for (std::size_t k = 0; k < n; ++k) mine[k] = samples[k] % ranks == rank;
+  std::vector<SampleResult> slots = evaluate_slots(samples, num_params, threads, f, mine);
+  std::vector<double> packed(n * width, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!mine[k] || !slots[k].ok) continue;
+    double* row = packed.data() + k * width;
+    row[0] = 1.0;
+    row[1] = slots[k].loss;
+    for (Index j = 0; j < num_params; ++j) row[2 + j] = slots[k].gradient(j);
+  }
+  const std::vector<double> all = sparse::allgather(packed);  // rank-major: R blocks of n·width
+  for (std::size_t k = 0; k < n; ++k) {
+    if (mine[k]) continue;
+    const int owner = static_cast<int>(samples[k] % ranks);
+    const double* row = all.data() + static_cast<std::size_t>(owner) * n * width + k * width;
+    SampleResult& slot = slots[k];
+    slot.ok = row[0] == 1.0;
+    if (!slot.ok) {
+      slot.message = "failed on rank " + std::to_string(owner);
+      continue;
+    }
+    slot.loss = row[1];
+    slot.gradient = Eigen::Map<const Vector>(row + 2, num_params);
+  }
+  return reduce_in_order(samples, num_params, slots);
 }
 
 }  // namespace lcprelax::learn

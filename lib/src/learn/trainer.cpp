@@ -1,6 +1,7 @@
 // Mini-batch training loop (trainer.hpp).
 #include <lcprelax/learn/trainer.hpp>
 #include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/sparse/mpi_session.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -35,10 +36,11 @@ std::string TrainSettings::validate() const {
 }
 
 BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const std::vector<Index>& samples,
-                          int threads) {
+                          int threads, bool distributed) {
   objective.prepare(theta, resolve_threads(threads));
-  BatchResult r = evaluate_batch(samples, theta.size(), threads,
-                                 [&](Index i, int t) { return objective.evaluate(i, theta, t); });
+  const SampleFunction f = [&](Index i, int t) { return objective.evaluate(i, theta, t); };
+  BatchResult r = distributed ? evaluate_batch_distributed(samples, theta.size(), threads, f)
+                              : evaluate_batch(samples, theta.size(), threads, f);
   if (r.evaluated > 0) {
     r.loss /= r.evaluated;
     r.gradient /= r.evaluated;
@@ -58,8 +60,9 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   std::mt19937_64 rng(settings.seed);
   std::vector<Index> order = training;
   const std::size_t batch = settings.batch > 0 ? static_cast<std::size_t>(settings.batch) : order.size();
+  const bool writer = !settings.distributed || sparse::mpi_rank() == 0;  // progress and log
   std::ofstream log;
-  if (!settings.log_csv.empty()) {
+  if (!settings.log_csv.empty() && writer) {
     log.open(settings.log_csv);
     if (!log) throw InputError("cannot write the training log '" + settings.log_csv + "'");
     log << "epoch,loss,validation_loss,gradient_norm,seconds,samples_per_second,failed";
@@ -81,7 +84,7 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
     for (std::size_t b0 = 0; b0 < order.size(); b0 += batch) {
       const std::vector<Index> samples(order.begin() + static_cast<std::ptrdiff_t>(b0),
                                        order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b0 + batch)));
-      const BatchResult r = evaluate_mean(objective, theta, samples, settings.threads);
+      const BatchResult r = evaluate_mean(objective, theta, samples, settings.threads, settings.distributed);
       rec.failed += r.failed;
       if (r.failed > 0 && out.first_failure.empty()) out.first_failure = r.first_failure;
       if (r.evaluated == 0) continue;
@@ -96,12 +99,12 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
     }
     rec.loss = loss_count > 0 ? loss_sum / static_cast<double>(loss_count) : std::numeric_limits<double>::quiet_NaN();
     rec.validation_loss = std::numeric_limits<double>::quiet_NaN();
-    if (!validation.empty()) rec.validation_loss = evaluate_mean(objective, theta, validation, settings.threads).loss;
+    if (!validation.empty()) rec.validation_loss = evaluate_mean(objective, theta, validation, settings.threads, settings.distributed).loss;
     rec.theta = theta.values();
     rec.seconds = elapsed();
     rec.samples_per_second = rec.seconds > 0.0 ? static_cast<double>(evaluated_total) / rec.seconds : 0.0;
     out.failed += rec.failed;
-    if (settings.progress) {
+    if (settings.progress && writer) {
       const double eta = rec.seconds / epoch * (settings.epochs - epoch);
       std::fprintf(stderr, "\repoch %d/%d  loss %.6g  val %.6g  %.0f samples/s  ETA %.0f s ", epoch, settings.epochs,
                    rec.loss, rec.validation_loss, rec.samples_per_second, eta);
@@ -116,7 +119,7 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
     }
     out.history.push_back(std::move(rec));
   }
-  if (settings.progress && settings.epochs > 0) std::fprintf(stderr, "\n");
+  if (settings.progress && writer && settings.epochs > 0) std::fprintf(stderr, "\n");
   out.seconds = elapsed();
   return out;
 }

@@ -39,6 +39,18 @@ using SampleFunction = std::function<SampleResult(Index sample, int thread)>;
 BatchResult evaluate_batch(const std::vector<Index>& samples, Index num_params, int threads,
                            const SampleFunction& f);
 
+/// Data-parallel evaluate_batch() over the MPI ranks (sparse/mpi_session.hpp): sample i is
+/// evaluated by rank i mod R only (the dataset is sharded by rank, so a sample's warm
+/// start stays on one rank), each rank with `threads` OpenMP threads; the per-sample
+/// results (ok, loss, gradient) are then all-gathered and every rank sums them in the
+/// order of `samples`. The result is identical on every rank and bitwise equal to the
+/// one-process evaluate_batch() whenever each sample's evaluation is deterministic.
+/// Messages of failures on other ranks read "failed on rank r". With one process (or a
+/// build without PETSc/MPI) this is evaluate_batch(). Collective: every rank must call it
+/// with the same samples.
+BatchResult evaluate_batch_distributed(const std::vector<Index>& samples, Index num_params, int threads,
+                                       const SampleFunction& f);
+
 /// The number of threads evaluate_batch() uses for `threads` (≤ 0: the OpenMP default; 1
 /// without OpenMP).
 int resolve_threads(int threads);

@@ -49,6 +49,12 @@ struct TrainSettings {
   OptimizerSettings optimizer;
   bool progress = false;          ///< one line per epoch on stderr
   std::string log_csv;            ///< if non-empty, CSV log of every epoch
+  /// Data-parallel over MPI ranks (batch.hpp evaluate_batch_distributed): every rank
+  /// calls train() with the same data and settings; sample i is evaluated on rank
+  /// i mod R, results are gathered and summed in a fixed order, so the parameters stay
+  /// identical on every rank and equal those of one process. Progress and the CSV log
+  /// are written by rank 0 only. Without MPI (or with one rank) it changes nothing.
+  bool distributed = false;
   std::string validate() const;   ///< empty if valid
 };
 
@@ -70,9 +76,10 @@ struct TrainResult {
   std::string first_failure;
 };
 
-/// Mean loss and mean gradient ∂ℓ/∂θ over `samples` at the current θ (no update).
+/// Mean loss and mean gradient ∂ℓ/∂θ over `samples` at the current θ (no update);
+/// distributed as in TrainSettings::distributed (collective over the ranks then).
 BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const std::vector<Index>& samples,
-                          int threads);
+                          int threads, bool distributed = false);
 
 /// Trains `theta` in place. Throws InputError on invalid settings, empty training set or
 /// out-of-range sample indices.
