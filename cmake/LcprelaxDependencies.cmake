@@ -32,8 +32,9 @@ elseif(LCPRELAX_WITH_CAIRO)
   endif()
 endif()
 # PETSc and MPI (optional, LCPRELAX_WITH_PETSC): pkg-config petsc as PkgConfig::PETSC plus
-# MPI::MPI_CXX (C API only). In lcprelax's own build the option makes both required; a consumer re-finds
-# them exactly when the exported targets link them.
+# MPI::MPI_CXX (C API only). In lcprelax's own build LCPRELAX_WITH_PETSC enables the search
+# and a missing PETSc or MPI disables them with a warning (the library, its tests and apps
+# work without); a consumer re-finds them exactly when the exported targets link them.
 if(EXISTS "${CMAKE_CURRENT_LIST_DIR}/lcprelaxTargets.cmake")
   file(STRINGS "${CMAKE_CURRENT_LIST_DIR}/lcprelaxTargets.cmake" _lcprelax_uses_petsc REGEX "PkgConfig::PETSC")
   if(_lcprelax_uses_petsc AND NOT TARGET PkgConfig::PETSC)
@@ -49,8 +50,16 @@ if(EXISTS "${CMAKE_CURRENT_LIST_DIR}/lcprelaxTargets.cmake")
   endif()
 elseif(LCPRELAX_WITH_PETSC)
   set(MPI_CXX_SKIP_MPICXX ON)  # the C API only
-  find_package(MPI REQUIRED COMPONENTS CXX)
-  find_package(PkgConfig REQUIRED)
-  pkg_check_modules(PETSC REQUIRED IMPORTED_TARGET petsc)
-  message(STATUS "lcprelax: PETSc ${PETSC_VERSION} (MUMPS KKT backend, MPI learning)")
+  find_package(MPI QUIET COMPONENTS CXX)
+  find_package(PkgConfig QUIET)
+  if(PkgConfig_FOUND)
+    pkg_check_modules(PETSC QUIET IMPORTED_TARGET petsc)
+  endif()
+  if(MPI_CXX_FOUND AND TARGET PkgConfig::PETSC)
+    message(STATUS "lcprelax: PETSc ${PETSC_VERSION} with MPI (MUMPS KKT backend, MPI learning)")
+  else()
+    message(WARNING "lcprelax: PETSc (pkg-config petsc) or MPI not found: built without them "
+                    "(Debian: apt-get install libpetsc-real3.18-dev)")
+    set(LCPRELAX_WITH_PETSC OFF)
+  endif()
 endif()

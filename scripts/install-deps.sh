@@ -10,3 +10,6 @@ $SUDO apt-get install -y --no-install-recommends \
   build-essential cmake libeigen3-dev libsuitesparse-dev libgtest-dev libgmock-dev \
   libbenchmark-dev nlohmann-json3-dev libcli11-dev coinor-clp \
   pkg-config libcairo2-dev
+# PETSc with MPI and MUMPS (LCPRELAX_WITH_PETSC): the MUMPS KKT backend, MPI learning, and
+# mpiexec for the 2-rank tests.
+$SUDO apt-get install -y --no-install-recommends libpetsc-real3.18-dev openmpi-bin
