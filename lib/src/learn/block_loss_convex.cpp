@@ -1,0 +1,98 @@
+// The convex block loss: the convex block model by the interior point, ℓ = (v⁺ − v̄)²,
+// gradient by QpSolver::backward (learn/block_losses.hpp).
+#include <lcprelax/kkt/qp_solver.hpp>
+#include <lcprelax/learn/block_losses.hpp>
+#include <lcprelax/models/block1d.hpp>
+
+#include <chrono>
+
+namespace lcprelax::learn {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct ConvexWorkspace {
+  QpSolver solver;
+  bool ready = false;
+};
+
+struct ConvexWarm {
+  Vector x, z_bounds;
+};
+
+class BlockConvexObjective final : public BlockObjective {
+ public:
+  using BlockObjective::BlockObjective;
+  BlockMethod method() const override { return BlockMethod::convex; }
+
+  SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override {
+    const Theta th = read_theta(theta);
+    const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];
+    BlockLossTimings& timer = timing(thread);
+    ConvexWorkspace& ws = *workspaces_[static_cast<std::size_t>(thread)];
+    const double rho = settings_.convex_rho;
+    const auto t0 = Clock::now();
+    const Block1d block{th.mass, th.mg, th.mu};
+    const QpProblem p = block1d_convex_qp(block, tr.v, tr.u, rho);
+    timer.assembly += since(t0);
+
+    const auto t1 = Clock::now();
+    if (ws.ready) {
+      ws.solver.update(p);
+    } else {
+      ws.solver.setup(p);
+      ws.ready = true;
+    }
+    ConvexWarm& warm = warm_[static_cast<std::size_t>(sample)];
+    if (settings_.warm_start_qp && warm.x.size() == 1) ws.solver.warm_start(warm.x, Vector(), Vector(), warm.z_bounds);
+    const QpResult& r = ws.solver.solve();
+    timer.solve += since(t1);
+    SampleResult out;
+    if (r.info.status != QpStatus::solved && r.info.status != QpStatus::solved_inaccurate) {
+      out.ok = false;
+      out.message = std::string("convex QP: ") + to_string(r.info.status) + " (" + r.info.message + ")";
+      return out;
+    }
+    warm.x = r.x;
+    warm.z_bounds = r.z_bounds;
+
+    const auto t2 = Clock::now();
+    const double w = 1.0 / th.mass;
+    const double lambda = r.x(0);
+    const double res = block1d_next_velocity(block, tr.v, tr.u, lambda) - tr.v_next;
+    out.loss = res * res;
+    const QpGradient g = ws.solver.backward(Vector::Constant(1, 2.0 * res * w));
+    const double dbound = g.dxu(0) - g.dxl(0);  // ∂ℓ/∂(μmg): xu = μmg, xl = −μmg
+    double dmass = 0.0;
+    if (th.i_mass >= 0)
+      dmass = -(1.0 + rho) * w * w * g.dP.coeff(0, 0) - tr.u * w * w * g.dq(0) - 2.0 * res * (tr.u + lambda) * w * w;
+    out.gradient = gradient_vector(theta.size(), th, dbound * th.mg, dmass, dbound * th.mu);
+    timer.backward += since(t2);
+    ++timer.evaluations;
+    return out;
+  }
+
+ protected:
+  void make_workspaces(int threads) override {
+    while (workspaces_.size() < static_cast<std::size_t>(threads)) {
+      workspaces_.push_back(std::make_unique<ConvexWorkspace>());
+      workspaces_.back()->solver.set_settings(settings_.qp);
+    }
+    if (warm_.size() != data_.samples.size()) warm_.assign(data_.samples.size(), ConvexWarm());
+  }
+
+ private:
+  std::vector<std::unique_ptr<ConvexWorkspace>> workspaces_;
+  std::vector<ConvexWarm> warm_;
+};
+
+}  // namespace
+
+std::unique_ptr<BlockObjective> make_block_convex_objective(const BlockDataset& data,
+                                                            const BlockLossSettings& settings) {
+  return std::make_unique<BlockConvexObjective>(data, settings);
+}
+
+}  // namespace lcprelax::learn

@@ -1,0 +1,63 @@
+// `lcprelax learn polygon` (DESIGN §4). Expected behaviour:
+// - a short run (40 samples, 3 epochs) of every method exits 0 and prints one JSON object
+//   with method, true, initial, learned (the learned parameters, name → value), final_loss,
+//   epochs, seconds; the CSV log has a header and one row per epoch; training lowers the
+//   loss below that at the initial values (--epochs 0);
+// - --learn selects the parameter kinds (mu,ground: 3 learned names);
+// - bad input exits 2 with a message on stderr naming the option and nothing on stdout:
+//   unknown method, unknown --learn kind, negative epochs, a plot file that is not .png/.svg.
+#include "cli_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace lcprelax {
+namespace {
+
+using namespace testing_support;
+
+class CliLearnPolygon : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CliLearnPolygon, ShortRunReportsTheContractFields) {
+  const std::string log = temp_path("polygon_" + GetParam() + ".csv");
+  const CliRun r = run_cli("learn polygon --method " + GetParam() +
+                           " --samples 40 --epochs 3 --threads 2 --json --log '" + log + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"method", "true", "initial", "learned", "final_loss", "epochs", "seconds"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["method"], GetParam());
+  EXPECT_EQ(j["epochs"], 3);
+  EXPECT_EQ(j["learned"].size(), 11u);  // mu, mass, inertia, 4 vertices × 2
+  EXPECT_DOUBLE_EQ(j["true"]["mu"].get<double>(), 0.4);
+  EXPECT_NE(j["initial"]["mu"].get<double>(), 0.4);
+  const std::string csv = slurp(log);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4) << csv;
+  std::filesystem::remove(log);
+  const CliRun r0 = run_cli("learn polygon --method " + GetParam() + " --samples 40 --epochs 0 --json");
+  ASSERT_EQ(r0.exit_code, 0) << r0.err;
+  EXPECT_LT(j["final_loss"].get<double>(), nlohmann::json::parse(r0.out)["final_loss"].get<double>());
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, CliLearnPolygon, ::testing::Values("hard", "relaxed", "convex"));
+
+TEST(CliLearnPolygonOptions, LearnSelectsKinds) {
+  const CliRun r = run_cli("learn polygon --samples 30 --epochs 1 --learn mu,ground --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["learned"].size(), 3u);
+  EXPECT_TRUE(j["learned"].contains("ground_angle"));
+}
+
+TEST(CliLearnPolygonOptions, BadInputExitsTwo) {
+  for (const std::string& args : {std::string("--method soft"), std::string("--learn mu,friction"),
+                                  std::string("--epochs -1"), std::string("--plot out.txt")}) {
+    const CliRun r = run_cli("learn polygon --samples 20 --json " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+}
+
+}  // namespace
+}  // namespace lcprelax
