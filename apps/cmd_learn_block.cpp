@@ -19,6 +19,8 @@
 // Exit 0 success, 1 when a sample's solve failed, 2 on bad input.
 #include "cli_common.hpp"
 
+#include <lcprelax/sparse/mpi_session.hpp>
+
 #include <lcprelax/learn/block_landscape.hpp>
 #include <lcprelax/learn/block_losses.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
@@ -147,6 +149,7 @@ int run_learn_block(const LearnBlockOptions& o) {
   t.optimizer.momentum = o.momentum;
   t.progress = !o.json && o.epochs > 0 && isatty(STDERR_FILENO);
   t.log_csv = o.log;
+  t.distributed = sparse::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
   const std::string tbad = t.validate();
   if (!tbad.empty()) throw InputError("training settings: " + tbad);
 
@@ -155,10 +158,10 @@ int run_learn_block(const LearnBlockOptions& o) {
   Stopwatch clock;
   int failed = 0;
   if (o.epochs > 0) failed += learn::train(*objective, theta, all, {}, t).failed;
-  const learn::BatchResult final_eval = learn::evaluate_mean(*objective, theta, all, o.threads);
+  const learn::BatchResult final_eval = learn::evaluate_mean(*objective, theta, all, o.threads, t.distributed);
   failed += final_eval.failed;
   const double seconds = clock.seconds();
-  if (!o.landscape.empty()) run_landscape(o, data, s, true_mu);
+  if (!o.landscape.empty() && sparse::mpi_rank() == 0) run_landscape(o, data, s, true_mu);
 
   Json j;
   j["method"] = learn::to_string(method);

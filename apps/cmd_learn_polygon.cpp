@@ -25,6 +25,8 @@
 // solve at the learned θ; 2 on bad input.
 #include "cli_common.hpp"
 
+#include <lcprelax/sparse/mpi_session.hpp>
+
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_objective.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
@@ -130,6 +132,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
   t.optimizer.learning_rate = o.lr;
   t.progress = !o.json && o.epochs > 0 && isatty(STDERR_FILENO);
   t.log_csv = o.log;
+  t.distributed = sparse::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
   const std::string bad = t.validate();
   if (!bad.empty()) throw InputError("training settings: " + bad);
 
@@ -156,10 +159,10 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
   Stopwatch clock;
   learn::TrainResult result;
   if (o.epochs > 0) result = learn::train(objective, theta, training, validation, t);
-  const learn::BatchResult final_eval = learn::evaluate_mean(objective, theta, training, o.threads);
+  const learn::BatchResult final_eval = learn::evaluate_mean(objective, theta, training, o.threads, t.distributed);
   const double seconds = clock.seconds();
-  const learn::BatchResult final_validation = learn::evaluate_mean(objective, theta, validation, o.threads);
-  if (!o.plot.empty()) write_plots(o.plot, result, true_theta, initial);
+  const learn::BatchResult final_validation = learn::evaluate_mean(objective, theta, validation, o.threads, t.distributed);
+  if (!o.plot.empty() && sparse::mpi_rank() == 0) write_plots(o.plot, result, true_theta, initial);
 
   Json j;
   j["method"] = learn::to_string(ls.method);

@@ -4,13 +4,35 @@
 #include "cli_common.hpp"
 
 #include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/sparse/mpi_session.hpp>
 
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <memory>
 #include <vector>
+
+namespace {
+
+// Whether this process was started by mpiexec/mpirun (Open MPI, MPICH/PMI, PMIx).
+bool launched_by_mpiexec() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lcprelax::cli;
+  // Under mpiexec: one MPI session for the whole run (data-parallel learning, the
+  // distributed KKT backend); only rank 0 writes to stdout, so the JSON is printed once.
+  std::unique_ptr<lcprelax::sparse::MpiSession> mpi;
+  if (launched_by_mpiexec() && lcprelax::sparse::petsc_available()) {
+    mpi = std::make_unique<lcprelax::sparse::MpiSession>(&argc, &argv);
+    if (lcprelax::sparse::mpi_rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return kExitBadInput;
+  }
   CLI::App app{"lcprelax: sparse QP / LCP solvers for many-contact systems"};
   app.require_subcommand(1);
   const std::vector<Command> commands = {
