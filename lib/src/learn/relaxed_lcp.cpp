@@ -319,7 +319,9 @@ const RelaxedLcpResult& RelaxedLcpSolver::solve(const RelaxedLcpData& data, bool
       m.res.message = "the relaxed QP's Hessian 2a1·PᵀP + a2(M + Mᵀ) + εI is not positive semidefinite";
       return m.res;
     }
-    const double base = std::max(m.opt.regularization, 1e-8) * std::max(1.0, m.hessian_norm());
+    // δ does not depend on the data (no ‖H‖ factor), so that the envelope gradient, which
+    // treats δ as a constant, is exact wherever the same k is chosen.
+    const double base = std::max(m.opt.regularization, 1e-8);
     bool ok = false;
     for (int k = 0; k <= 12 && !ok; ++k) {
       m.res.shift = base * std::pow(10.0, k);

@@ -34,9 +34,12 @@
 // NOT of this kind in general (λᵀMλ contains μγλn, indefinite), so solve() checks H with
 // a CHOLMOD LLᵀ before the interior point:
 //   - NonconvexPolicy::report (default): status nonconvex, no QP solve, c = NaN;
-//   - NonconvexPolicy::shift: H_λλ += δI with the smallest δ = 10ᵏ·max(ε, 1e-8)·max(1,
-//     ‖H‖∞) (k = 0, 1, …, 12) for which LLᵀ succeeds; δ is reported in Result::shift and
-//     the shifted problem is the one solved and differentiated (c includes (δ/2)‖λ‖²).
+//   - NonconvexPolicy::shift: H_λλ += δI with the smallest δ = 10ᵏ·max(ε, 1e-8)
+//     (k = 0, 1, …, 12) for which LLᵀ succeeds; δ is reported in Result::shift and the
+//     shifted problem is the one solved and differentiated (c includes (δ/2)‖λ‖²). δ is
+//     independent of the data (it used to scale with ‖H‖∞, which made the envelope
+//     gradient, which holds δ fixed, miss ∂δ/∂θ): the gradient is exact except where a
+//     change of θ changes k (a kink of c). Scale the unknowns so that ε is meaningful.
 //
 // Gradient (envelope theorem; Milgrom & Segal 2002). At the optimum with the QpSolver's
 // multipliers (DESIGN §3: Hx + h + Gᵀz + z_bounds = 0, z < 0 on an active lower side), the
