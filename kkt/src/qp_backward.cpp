@@ -6,6 +6,16 @@
 // The adjoint system uses the barrier terms (Db, Dg) of that factorization, i.e. of the
 // iterate before the last step; active and inactive constraints are at W → 0 and W → ∞
 // there, so the difference vanishes as the solve converges.
+// Exception: a solve that stopped before its first factorization (a warm start that
+// already met the tolerances: 0 iterations) has no factorization of its own; the solver's
+// last one belongs to an earlier problem (or does not exist), and the warm iterate's
+// barrier terms are not those of a converged interior point (the warm start keeps every
+// s, z ≥ 1e-2), so factorizing there gives gradients off by percents (measured 6% on a
+// one-variable box QP). backward() then solves the problem again from the cold start
+// (result() is replaced by that solve; it agrees with the warm one to the tolerances) and
+// uses its final factorization. Without this, warm-started solves returned the gradient
+// of the previous problem and, with per-thread workspaces, results that depended on the
+// thread schedule (tests/qp_backward_warm_start_test.cpp).
 #include "qp_solver_impl.hpp"
 
 #include <lcprelax/sparse/errors.hpp>
@@ -53,6 +63,14 @@ QpGradient QpSolver::backward(const Vector& dl_dx, const Vector& dl_dy, const Ve
   }
   if (dl_dz.size())
     for (Index k = 0; k < f.mg; ++k) gz(k) = f.Eg(k) / f.c * dl_dz(f.g_index[k]);
+
+  if (m.result.info.factorizations == 0) {  // see the header comment
+    m.has_warm_start = false;
+    const QpResult& cold = solve();
+    if (cold.info.status != QpStatus::solved && cold.info.status != QpStatus::solved_inaccurate)
+      throw std::runtime_error(std::string("QpSolver::backward: the cold re-solve after a 0-iteration warm start "
+                                           "failed: ") + to_string(cold.info.status));
+  }
 
   // One refined solve with the final factorization: K0 (d_x, d_y, d̃_ζ) = −(g_x, g_y, g_ζ).
   Vector dx, dy, dz;

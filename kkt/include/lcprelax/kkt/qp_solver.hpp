@@ -27,7 +27,9 @@
 // gives a linear system whose transpose, after scaling the last block row by Z⁻¹, is the
 // final symmetric KKT matrix [P Aᵀ Cᵀ; A 0 0; C 0 −W] of the forward solve. backward()
 // solves it once with the final factorization (zero new numeric factorizations; refined
-// against the unregularized matrix) for d = (d_x, d_y, d̃_z), and returns
+// against the unregularized matrix; the one exception is a solve that ended before its
+// first factorization, a warm start already optimal: backward() then re-solves cold and
+// uses that factorization, see qp_backward.cpp) for d = (d_x, d_y, d̃_z), and returns
 //     ∂ℓ/∂q = d_x,  ∂ℓ/∂b = −d_y,  ∂ℓ/∂h = −d̃_z,
 //     ∂ℓ/∂P = ½(d_x xᵀ + x d_xᵀ),  ∂ℓ/∂A = d_y xᵀ + y d_xᵀ,  ∂ℓ/∂C = d̃_z xᵀ + z d_xᵀ,
 // mapped back to P, A, G, l, u, xl, xu (qp_gradient.hpp). Strictly inactive constraints
@@ -68,7 +70,8 @@ class QpSolver {
   QpGradient backward(const Vector& dl_dx, const Vector& dl_dy = Vector(), const Vector& dl_dz = Vector());
 
   const QpResult& result() const;
-  /// Numeric KKT factorizations since setup() (backward() adds none).
+  /// Numeric KKT factorizations since setup() (backward() adds none, except after a
+  /// 0-iteration warm-started solve, which it re-solves cold: see the header comment).
   int numeric_factorizations() const;
   const QpSettings& settings() const;
   /// Changes settings (validated, throws InputError) without redoing setup().
