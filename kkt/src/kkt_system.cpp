@@ -134,11 +134,12 @@ bool KktSystem::setup(const StandardForm& f, KktForm requested, std::string& mes
 }
 
 sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& Db, const Vector& Dg, double rho,
-                                          double delta) {
+                                          double delta, double delta_rows) {
   Db_ = Db;
   Dg_ = Dg;
   rho_ = rho;
   delta_ = delta;
+  delta_rows_ = delta_rows;
   double* val = K_.valuePtr();
   std::fill(val, val + K_.nonZeros(), 0.0);
   for (Index j = 0; j < f.n; ++j)
@@ -149,11 +150,11 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
     for (Index s = 0; s < f.Et.nonZeros(); ++s) val[e_pos_[s]] = f.Et.valuePtr()[s];
     for (Index k = 0; k < f.me; ++k) val[diag_pos_[f.n + k]] = -delta;
     for (Index s = 0; s < f.Gt.nonZeros(); ++s) val[g_pos_[s]] = f.Gt.valuePtr()[s];
-    for (Index i = 0; i < f.mg; ++i) val[diag_pos_[f.n + f.me + i]] = -(1.0 / Dg(i) + delta);
+    for (Index i = 0; i < f.mg; ++i) val[diag_pos_[f.n + f.me + i]] = -(1.0 / Dg(i) + delta_rows_);
   } else {
     const double* gv = f.Gt.valuePtr();
     for (const ProductTerm& t : products_) {
-      const double w = Dg(t.row) / (1.0 + delta * Dg(t.row));
+      const double w = Dg(t.row) / (1.0 + delta_rows_ * Dg(t.row));
       val[t.pos] += w * gv[t.a] * gv[t.b];
     }
   }
@@ -191,7 +192,7 @@ void KktSystem::approximate_solve(const StandardForm& f, const Vector& rx, const
     dy = work_.segment(f.n, f.me);
     dz = work_.tail(f.mg);
   } else {
-    const Vector wr = (1.0 / Dg_.array() + delta_).matrix();
+    const Vector wr = (1.0 / Dg_.array() + delta_rows_).matrix();
     const Vector rzw = (rz.array() / wr.array()).matrix();
     work_ = rx;
     if (f.mg > 0) work_.noalias() += f.Gt * rzw;
@@ -206,6 +207,7 @@ void KktSystem::approximate_solve(const StandardForm& f, const Vector& rx, const
 int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, const Vector& rz, Vector& dx,
                      Vector& dy, Vector& dz, int max_refinement) const {
   approximate_solve(f, rx, ry, rz, dx, dy, dz);
+  last_relative_residual_ = 0.0;
   if (max_refinement <= 0) return 0;
   const double rhs_norm = std::max({rx.lpNorm<Eigen::Infinity>(), f.me ? ry.lpNorm<Eigen::Infinity>() : 0.0,
                                     f.mg ? rz.lpNorm<Eigen::Infinity>() : 0.0});
@@ -235,6 +237,7 @@ int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, 
     res = nres;
     if (slow) break;
   }
+  last_relative_residual_ = res / (1.0 + rhs_norm);
   return steps;
 }
 

@@ -7,7 +7,9 @@
 //          [E              0    0         ]
 //          [G              0   −diag(1/Dg)]
 // with Db ≥ 0 (bound barrier terms) and Dg > 0 (row barrier terms: Dg = z_u/s_u + z_l/s_l).
-// The factorized matrix adds +ρ on the first block and −δ on the other two. Full form:
+// The factorized matrix adds +ρ on the first block, −δ on the equality block and −δ_g on
+// the inequality block (δ_g ≤ δ; that block is already negative definite through −1/Dg,
+// so δ_g may be 0: qp_ipm_loop.cpp drops it when the refinement stalls). Full form:
 // the upper triangle of that quasi-definite matrix, CHOLMOD LDLᵀ. Eliminated form (only
 // when me = 0): H = P + Db + ρI + Gᵀ diag(Dg/(1 + δ Dg)) G by CHOLMOD supernodal LLᵀ.
 // The data → K index maps are built once, so refilling values is a scatter.
@@ -28,15 +30,17 @@ class KktSystem {
   /// Chooses the form (automatic: smaller predicted nnz(L)), builds pattern, maps and the
   /// symbolic analysis. Returns false with a message if the analysis fails.
   bool setup(const StandardForm& f, KktForm requested, std::string& message);
-  /// Fills values for (Db, Dg, ρ, δ) and factorizes numerically.
+  /// Fills values for (Db, Dg, ρ, δ, δ_g) and factorizes numerically.
   sparse::FactorResult factorize(const StandardForm& f, const Vector& Db, const Vector& Dg, double rho,
-                                 double delta);
+                                 double delta, double delta_rows);
   /// Solves K0 (dx, dy, dz) = (rx, ry, rz) with the current factorization and refinement.
   /// Returns the number of refinement steps taken.
   int solve(const StandardForm& f, const Vector& rx, const Vector& ry, const Vector& rz, Vector& dx, Vector& dy,
             Vector& dz, int max_refinement) const;
 
   KktForm form() const { return form_; }
+  /// ‖K0·d − rhs‖∞ / (1 + ‖rhs‖∞) after the last solve's refinement.
+  double last_relative_residual() const { return last_relative_residual_; }
   long factor_nnz() const;
   int numeric_factorizations() const;
 
@@ -60,7 +64,8 @@ class KktSystem {
   };
   std::vector<ProductTerm> products_;
   Vector Db_, Dg_;                       // values of the last factorization
-  double rho_ = 0.0, delta_ = 0.0;
+  double rho_ = 0.0, delta_ = 0.0, delta_rows_ = 0.0;
+  mutable double last_relative_residual_ = 0.0;
   mutable Vector work_;                  // scratch for solves
 };
 

@@ -88,9 +88,15 @@ void QpSolver::warm_start(const Vector& x, const Vector& y, const Vector& z, con
 bool QpSolver::Impl::factorize(QpInfo& info) {
   const auto t0 = Clock::now();
   for (;;) {
-    const sparse::FactorResult r = kkt.factorize(form, Db, Dg, rho, delta);
+    const sparse::FactorResult r = kkt.factorize(form, Db, Dg, rho, delta, delta_rows);
     ++info.factorizations;
     if (r.ok()) break;
+    if (delta_rows < delta) {  // first give the inequality block its regularization back
+      delta_rows = delta;
+      may_drop_row_regularization = false;
+      ++info.factor_retries;
+      continue;
+    }
     if (rho >= settings.reg_max) {
       info.message = "KKT factorization failed at the largest regularization: " + r.message;
       info.factor_seconds += seconds_since(t0);
@@ -98,6 +104,7 @@ bool QpSolver::Impl::factorize(QpInfo& info) {
     }
     rho = std::min(rho * 10.0, settings.reg_max);
     delta = std::min(delta * 10.0, settings.reg_max);
+    delta_rows = delta;
     ++info.factor_retries;
   }
   info.factor_seconds += seconds_since(t0);

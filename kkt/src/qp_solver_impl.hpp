@@ -40,9 +40,11 @@ struct QpSolver::Impl {
   QpResult warm;                ///< warm-start point (unscaled)
   Vector Db, Dg;                ///< barrier terms of the last factorization
   double rho = 0, delta = 0;    ///< regularization of the last factorization
+  double delta_rows = 0;        ///< its inequality-block part δ_g (δ, or 0 once dropped)
   double setup_seconds = 0;
 
   void build(const QpProblem& p);
+  bool may_drop_row_regularization = true;  ///< false once a factorization with δ_g = 0 failed
   bool factorize(QpInfo& info);
   /// Newton step for the current rd, rp and side rc; returns refinement steps.
   int newton_step(const Vector& rd, const Vector& rp, Vector& dx, Vector& dy, Vector& dz);
