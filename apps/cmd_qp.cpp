@@ -23,6 +23,7 @@ struct QpOptions {
   double eps = QpSettings{}.eps_abs;
   int max_iter = QpSettings{}.max_iter;
   std::string solution;
+  std::string kkt_backend = "cholmod";
   bool json = false;
 };
 
@@ -32,6 +33,10 @@ QpSettings settings_from(const QpOptions& o) {
   QpSettings s;
   s.eps_abs = o.eps;
   s.max_iter = o.max_iter;
+  if (o.kkt_backend == "cholmod") s.kkt_backend = KktBackend::cholmod;
+  else if (o.kkt_backend == "mumps") s.kkt_backend = KktBackend::mumps;
+  else if (o.kkt_backend == "mumps-distributed") s.kkt_backend = KktBackend::mumps_distributed;
+  else throw InputError("--kkt-backend: must be cholmod, mumps or mumps-distributed");
   const std::string error = s.validation_error();
   if (!error.empty()) throw InputError("invalid solver settings: " + error);
   return s;
@@ -101,6 +106,10 @@ Command add_qp_command(CLI::App& parent) {
       ->capture_default_str();
   qp->add_option("--max-iter", options->max_iter, "Interior-point iteration limit")->capture_default_str();
   qp->add_option("--solution", options->solution, "Write x, y_rows and y_bounds to this JSON file");
+  qp->add_option("--kkt-backend", options->kkt_backend,
+                 "KKT factorization: cholmod, mumps (PETSc, this process) or mumps-distributed (over the MPI ranks "
+                 "of mpiexec)")
+      ->capture_default_str();
   add_json_flag(*qp, options->json);
   return Command{qp, [options] { return run_qp(*options); }};
 }

@@ -2,6 +2,8 @@
 // (see kkt_system.hpp).
 #include "kkt_system.hpp"
 
+#include <lcprelax/sparse/petsc_mumps_ldlt.hpp>
+
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/cholmod_llt.hpp>
 
@@ -93,14 +95,18 @@ bool KktSystem::build_eliminated_pattern(const StandardForm& f) {
   return true;
 }
 
-bool KktSystem::setup(const StandardForm& f, KktForm requested, std::string& message) {
+bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message) {
   KktForm form = requested;
   if (f.me > 0) form = KktForm::full;  // the eliminated form has no equality block
+  if (backend != KktBackend::cholmod) form = KktForm::full;  // MUMPS: the quasi-definite LDLᵀ
   std::unique_ptr<sparse::Factorization> full, elim;
   SparseMatrix full_K;
   if (form != KktForm::eliminated) {
     build_full_pattern(f);
-    full = std::make_unique<sparse::CholmodLdlt>();
+    if (backend == KktBackend::cholmod)
+      full = std::make_unique<sparse::CholmodLdlt>();
+    else
+      full = std::make_unique<sparse::PetscMumpsLdlt>(backend == KktBackend::mumps_distributed, /*pivoting=*/false);
     if (auto r = full->analyze(K_); !r.ok()) {
       message = "KKT analysis failed: " + r.message;
       return false;
@@ -160,7 +166,9 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
   }
   sparse::FactorResult r = factor_->factorize(K_);
   if (r.ok() && form_ == KktForm::full) {
-    const auto inertia = static_cast<const sparse::CholmodLdlt&>(*factor_).inertia();
+    const auto* mumps = dynamic_cast<const sparse::PetscMumpsLdlt*>(factor_.get());
+    const sparse::Inertia inertia =
+        mumps ? mumps->inertia() : static_cast<const sparse::CholmodLdlt&>(*factor_).inertia();
     if (inertia.positive != f.n) {
       r.status = sparse::FactorStatus::zero_pivot;
       r.message = "KKT factor has " + std::to_string(inertia.positive) + " positive pivots, expected " +

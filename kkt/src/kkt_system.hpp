@@ -29,7 +29,7 @@ class KktSystem {
  public:
   /// Chooses the form (automatic: smaller predicted nnz(L)), builds pattern, maps and the
   /// symbolic analysis. Returns false with a message if the analysis fails.
-  bool setup(const StandardForm& f, KktForm requested, std::string& message);
+  bool setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message);
   /// Fills values for (Db, Dg, ρ, δ, δ_g) and factorizes numerically.
   sparse::FactorResult factorize(const StandardForm& f, const Vector& Db, const Vector& Dg, double rho,
                                  double delta, double delta_rows);

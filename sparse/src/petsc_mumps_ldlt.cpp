@@ -42,6 +42,7 @@ struct PetscMumpsLdlt::Impl {
   PetscInt n = 0, lo = 0, hi = 0;
   bool factored = false;
   long nnz = 0;
+  PetscInt workspace_margin = 50;  // ICNTL(14), percent over the analysis' estimate
   Inertia inertia;
 
   ~Impl() { destroy(); }
@@ -72,7 +73,8 @@ struct PetscMumpsLdlt::Impl {
   }
 };
 
-PetscMumpsLdlt::PetscMumpsLdlt(bool distributed) : impl_(std::make_unique<Impl>()), distributed_(distributed) {}
+PetscMumpsLdlt::PetscMumpsLdlt(bool distributed, bool pivoting)
+    : impl_(std::make_unique<Impl>()), distributed_(distributed), pivoting_(pivoting) {}
 PetscMumpsLdlt::~PetscMumpsLdlt() = default;
 
 FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
@@ -106,7 +108,16 @@ FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
   if (auto r = m.fill(A); !r.ok()) return r;
 
   LCPRELAX_PETSC(MatGetFactor(m.A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &m.F), "MatGetFactor(mumps, cholesky)");
-  LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 24, 1), "ICNTL(24)");  // detect null pivots
+  LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 14, m.workspace_margin), "ICNTL(14)");  // before the analysis
+  if (pivoting_) {
+    LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 24, 1), "ICNTL(24)");  // detect null pivots
+  } else {
+    // Static pivot order (CNTL(1) = 0) with MUMPS' static pivoting (CNTL(4) = 1e-300: pivots
+    // below ε·‖A‖ are replaced by that threshold with their sign), like CHOLMOD's LDLᵀ of a
+    // quasi-definite matrix; wrong-signed pivots still show in the inertia.
+    LCPRELAX_PETSC(MatMumpsSetCntl(m.F, 1, 0.0), "CNTL(1)");
+    LCPRELAX_PETSC(MatMumpsSetCntl(m.F, 4, 1e-300), "CNTL(4)");
+  }
   IS rowperm = nullptr, colperm = nullptr;
   LCPRELAX_PETSC(MatGetOrdering(m.A, MATORDERINGNATURAL, &rowperm, &colperm), "MatGetOrdering");
   MatFactorInfo info;
@@ -137,12 +148,25 @@ FactorResult PetscMumpsLdlt::factorize(const SparseMatrix& A_in) {
   MatFactorInfo info;
   MatFactorInfoInitialize(&info);
   ++numeric_factorizations_;
-  const PetscErrorCode e = MatCholeskyFactorNumeric(m.F, m.A, &info);
+  // MUMPS sizes its workspace from the analysis' estimate plus ICNTL(14) percent; numerical
+  // pivoting (delayed pivots of indefinite KKT matrices) can exceed it (INFOG(1) = −9):
+  // then the margin is doubled and the factorization repeated, up to 400% (measured: the
+  // default 20% failed on STCQP1's KKT).
+  PetscErrorCode e = 0;
   PetscInt infog1 = 0, negative = 0, null_pivots = 0, entries = 0;
-  MatMumpsGetInfog(m.F, 1, &infog1);
+  for (PetscInt margin = m.workspace_margin;; margin *= 2) {
+    MatMumpsSetIcntl(m.F, 14, margin);
+    e = MatCholeskyFactorNumeric(m.F, m.A, &info);
+    MatMumpsGetInfog(m.F, 1, &infog1);
+    if (infog1 != -9 || margin >= 400) break;
+    m.workspace_margin = 2 * margin;
+  }
   if (e || infog1 < 0) {
-    if (infog1 == -9 || infog1 == -13) return detail::make_result(FactorStatus::out_of_memory, "MUMPS: out of memory");
-    if (infog1 == -10) return detail::make_result(FactorStatus::zero_pivot, "MUMPS: numerically singular matrix");
+    PetscInt infog2 = 0;
+    MatMumpsGetInfog(m.F, 2, &infog2);
+    const std::string codes = " (INFOG(1) = " + std::to_string(infog1) + ", INFOG(2) = " + std::to_string(infog2) + ")";
+    if (infog1 == -9 || infog1 == -13) return detail::make_result(FactorStatus::out_of_memory, "MUMPS: out of memory" + codes);
+    if (infog1 == -10) return detail::make_result(FactorStatus::zero_pivot, "MUMPS: numerically singular matrix" + codes);
     if (e) return petsc_failure(e, "numeric factorization");
     return detail::make_result(FactorStatus::internal_error, "MUMPS INFOG(1) = " + std::to_string(infog1));
   }
@@ -186,7 +210,8 @@ Inertia PetscMumpsLdlt::inertia() const { return impl_->inertia; }
 #else  // built without PETSc
 
 struct PetscMumpsLdlt::Impl {};
-PetscMumpsLdlt::PetscMumpsLdlt(bool distributed) : impl_(std::make_unique<Impl>()), distributed_(distributed) {}
+PetscMumpsLdlt::PetscMumpsLdlt(bool distributed, bool pivoting)
+    : impl_(std::make_unique<Impl>()), distributed_(distributed), pivoting_(pivoting) {}
 PetscMumpsLdlt::~PetscMumpsLdlt() = default;
 namespace {
 FactorResult unavailable() {

@@ -27,6 +27,24 @@ constexpr const char* to_string(KktForm f) {
   return "unknown";
 }
 
+/// Which sparse factorization solves the KKT systems (forward iterations and backward()).
+enum class KktBackend {
+  cholmod,            ///< CHOLMOD: LDLᵀ of the full form or LLᵀ of the eliminated form (default)
+  mumps,              ///< MUMPS LDLᵀ through PETSc, in this process (full form only; needs a
+                      ///< PETSc build, sparse/petsc_mumps_ldlt.hpp; not for concurrent threads)
+  mumps_distributed   ///< MUMPS LDLᵀ distributed over all MPI ranks: every rank must call
+                      ///< setup/solve/backward collectively on the same problem
+};
+
+constexpr const char* to_string(KktBackend b) {
+  switch (b) {
+    case KktBackend::cholmod: return "cholmod";
+    case KktBackend::mumps: return "mumps";
+    case KktBackend::mumps_distributed: return "mumps_distributed";
+  }
+  return "unknown";
+}
+
 struct QpSettings {
   double eps_abs = 1e-9;          ///< absolute tolerance on residuals and gap
   double eps_rel = 0.0;           ///< relative tolerance (see header comment)
@@ -40,6 +58,9 @@ struct QpSettings {
   int ruiz_iterations = 10;       ///< Ruiz equilibration passes (0 disables scaling)
   double step_fraction = 0.995;   ///< fraction to the boundary
   KktForm kkt_form = KktForm::automatic;
+  /// mumps backends force the full form; takes effect at setup(); solve_qp_batch runs
+  /// them on one thread (PETSc is not thread-safe).
+  KktBackend kkt_backend = KktBackend::cholmod;
   bool verbose = false;           ///< one line per iteration on stderr
   /// When the iteration fails (stalls, diverges, hits max_iter), solve the auxiliary LPs of
   /// qp_infeasibility_lp.cpp that decide primal or dual infeasibility with a certificate.

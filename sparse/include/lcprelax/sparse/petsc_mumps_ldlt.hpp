@@ -8,10 +8,16 @@
 // Same contract as every Factorization (factorization.hpp): analyze() once per pattern
 // (the upper triangle is read, entries below the diagonal ignored), factorize() on new
 // values of that pattern (numeric refactorization only: the MUMPS analysis is kept),
-// solve() with many right-hand sides, failures as statuses. MUMPS pivots (1×1 and 2×2),
-// so any nonsingular symmetric matrix factorizes; inertia() reports the signs of D from
-// MUMPS (INFOG(12) negative pivots; null pivots detected with ICNTL(24) = 1 and a
-// threshold of 1e-14·‖A‖ count as zero_pivot).
+// solve() with many right-hand sides, failures as statuses. With pivoting (the default)
+// MUMPS pivots (1×1 and 2×2, threshold CNTL(1) = 0.01), so any nonsingular symmetric
+// matrix factorizes; without (pivoting = false, CNTL(1) = 0: static pivot order, as
+// CHOLMOD's LDLᵀ, and MUMPS' static pivoting CNTL(4) = 0: pivots below ε‖A‖ replaced by
+// ±ε‖A‖, so no zero_pivot status, but their signs count in inertia()) it is meant for
+// quasi-definite matrices (Vanderbei 1995), which need no pivoting, and avoids the delayed pivots that made MUMPS run out of its workspace on
+// interior-point KKT matrices near the solution (measured on STCQP1: INFOG(1) = −9 at every
+// regularization). inertia() reports the signs of D from
+// MUMPS (INFOG(12) negative pivots; with pivoting, null pivots detected with
+// ICNTL(24) = 1 give zero_pivot).
 //
 // Communicator:
 //   distributed = false: PETSC_COMM_SELF: each process factorizes its own matrices (the
@@ -32,7 +38,7 @@ namespace lcprelax::sparse {
 
 class PetscMumpsLdlt final : public Factorization {
  public:
-  explicit PetscMumpsLdlt(bool distributed = false);
+  explicit PetscMumpsLdlt(bool distributed = false, bool pivoting = true);
   ~PetscMumpsLdlt() override;
   PetscMumpsLdlt(const PetscMumpsLdlt&) = delete;
   PetscMumpsLdlt& operator=(const PetscMumpsLdlt&) = delete;
@@ -52,6 +58,7 @@ class PetscMumpsLdlt final : public Factorization {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   bool distributed_;
+  bool pivoting_;
 };
 
 }  // namespace lcprelax::sparse
