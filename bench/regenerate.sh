@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Regenerates the benchmark CSVs/texts in bench/results and the plots in bench/results/plots
+# (the numbers the README and bench/README.md quote). Run from the repository root after
+#   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2
+# Usage: bench/regenerate.sh [BUILD_DIR] [--quick]
+#   --quick: pile scaling only up to 200 bodies (the full 10..2,000 sweep takes hours on
+#   2 cores) and no Clp in the work-precision sweep.
+# Every step writes its own files; a runner whose optional peer is missing (Clp, Siconos,
+# Box2D) is skipped with a message. Machines are noisy: compare ratios within one run.
+set -euo pipefail
+BUILD=${1:-build}
+QUICK=${2:-}
+R=bench/results
+B=$BUILD/bench
+mkdir -p "$R"
+run() { echo "== $*" >&2; "$@"; }
+
+run "$B/run_maros_meszaros" tests/data/maros_meszaros --out "$R/maros_meszaros.csv" --time-limit 60 > "$R/maros_meszaros.txt"
+run "$B/bench_qp_random" --benchmark_out="$R/qp_random.json" --benchmark_out_format=json > "$R/qp_random.txt"
+OMP_NUM_THREADS=1 run "$B/bench_lemke" > "$R/lemke_sparse_vs_dense.txt"
+if [ -x "$B/run_lemke_peers" ]; then run "$B/run_lemke_peers" tests/data/siconos --out "$R/lemke_peers.csv" > "$R/lemke_peers.txt"; else echo "Siconos not built: lemke peers skipped" >&2; fi
+if [ "$QUICK" = "--quick" ]; then
+  run "$B/run_pile_scaling" --sizes 10,20,50,100,200 --csv "$R/pile_scaling.csv" > "$R/pile_scaling.txt"
+  run "$B/run_work_precision" --clp "" --csv "$R/work_precision.csv"
+else
+  run "$B/run_pile_scaling" --sizes 10,20,50,100,200,500,1000,2000 --csv "$R/pile_scaling.csv" > "$R/pile_scaling.txt"
+  run "$B/run_work_precision" --csv "$R/work_precision.csv"
+fi
+if [ -x "$B/run_pile_peers" ]; then
+  run "$B/run_pile_peers" --pile-sizes 50,200 --settle-steps 150 --steps 20 --pyramid-steps 200 --lcp-max-bodies 50 \
+    --csv "$R/pile_peers.csv" > "$R/pile_peers.txt"
+else
+  echo "Box2D not built: pile peers skipped" >&2
+fi
+run "$B/run_stiff_report" --csv "$R/stiff_report.csv" > "$R/stiff_report.md"
+run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
+run "$B/bench_learn_polygon" --benchmark_min_time=0.5 > "$R/learn_polygon.txt"
+run "$B/run_report_plots" --results "$R" --out "$R/plots"
