@@ -2,6 +2,9 @@
 #include "cli_common.hpp"
 
 #include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/sparse/mpi_session.hpp>
+
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -38,6 +41,25 @@ void write_json_file(const std::string& path, const Json& object) {
 
 void require_option(bool ok, const std::string& option, const std::string& requirement) {
   if (!ok) throw InputError(option + ": " + requirement);
+}
+
+learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, std::uint64_t seed,
+                                          const std::string& optimizer, double learning_rate, double momentum,
+                                          bool json, const std::string& log_csv) {
+  learn::TrainSettings t;
+  t.epochs = epochs;
+  t.batch = batch;
+  t.threads = threads;
+  t.seed = seed;
+  t.optimizer.kind = learn::parse_optimizer_kind(optimizer);
+  t.optimizer.learning_rate = learning_rate;
+  t.optimizer.momentum = momentum;
+  t.progress = !json && epochs > 0 && isatty(STDERR_FILENO);
+  t.log_csv = log_csv;
+  t.distributed = sparse::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
+  const std::string bad = t.validate();
+  if (!bad.empty()) throw InputError("training settings: " + bad);
+  return t;
 }
 
 }  // namespace lcprelax::cli

@@ -7,12 +7,14 @@
 // (malformed or missing file, invalid option value, NaN data) is thrown as
 // lcprelax::InputError and main() turns it into a message on stderr and kExitBadInput,
 // with nothing on stdout.
+#include <lcprelax/learn/trainer.hpp>
 #include <lcprelax/sparse/types.hpp>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -51,6 +53,13 @@ Command add_pile_command(CLI::App& parent);
 using LearnApplicationFactory = Command (*)(CLI::App& learn);
 bool register_learn_application(LearnApplicationFactory factory);
 Command add_learn_command(CLI::App& parent);
+
+/// Training settings common to the learn commands: epochs, mini-batch, threads, seed,
+/// optimizer (sgd|adam) with learning rate and momentum, progress on a terminal unless
+/// --json, the CSV log, and data-parallel mode under mpiexec. Throws InputError if invalid.
+learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, std::uint64_t seed,
+                                          const std::string& optimizer, double learning_rate, double momentum,
+                                          bool json, const std::string& log_csv);
 
 /// Adds the `--json` flag every subcommand accepts.
 void add_json_flag(CLI::App& command, bool& json);

@@ -26,7 +26,6 @@
 #include <lcprelax/scenes/line_plot.hpp>
 #include <lcprelax/sparse/errors.hpp>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -139,19 +138,8 @@ int run_learn_block(const LearnBlockOptions& o) {
   learn::ParameterSet theta = learn::block_parameters(o.init_mu, o.mass, o.mg, o.learn_mass, o.learn_mg);
   const learn::ParameterSet initial = theta;
 
-  learn::TrainSettings t;
-  t.epochs = o.epochs;
-  t.batch = o.batch;
-  t.threads = o.threads;
-  t.seed = o.seed;
-  t.optimizer.kind = learn::parse_optimizer_kind(o.optimizer);
-  t.optimizer.learning_rate = o.lr;
-  t.optimizer.momentum = o.momentum;
-  t.progress = !o.json && o.epochs > 0 && isatty(STDERR_FILENO);
-  t.log_csv = o.log;
-  t.distributed = sparse::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
-  const std::string tbad = t.validate();
-  if (!tbad.empty()) throw InputError("training settings: " + tbad);
+  const learn::TrainSettings t =
+      learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr, o.momentum, o.json, o.log);
 
   std::vector<Index> all(static_cast<std::size_t>(data.size()));
   for (Index i = 0; i < data.size(); ++i) all[static_cast<std::size_t>(i)] = i;

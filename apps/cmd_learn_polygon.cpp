@@ -32,7 +32,6 @@
 #include <lcprelax/scenes/line_plot.hpp>
 #include <lcprelax/sparse/errors.hpp>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -123,18 +122,8 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     require_option(ext == ".png" || ext == ".svg", "--plot", "must end in .png or .svg");
   }
-  learn::TrainSettings t;
-  t.epochs = o.epochs;
-  t.batch = o.batch;
-  t.threads = o.threads;
-  t.seed = o.seed;
-  t.optimizer.kind = learn::parse_optimizer_kind(o.optimizer);
-  t.optimizer.learning_rate = o.lr;
-  t.progress = !o.json && o.epochs > 0 && isatty(STDERR_FILENO);
-  t.log_csv = o.log;
-  t.distributed = sparse::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
-  const std::string bad = t.validate();
-  if (!bad.empty()) throw InputError("training settings: " + bad);
+  const learn::TrainSettings t = learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr,
+                                                      learn::OptimizerSettings{}.momentum, o.json, o.log);
 
   const learn::PolygonModel truth = truth_model();
   learn::PolygonDataSettings ds;

@@ -44,6 +44,12 @@ struct PetscMumpsLdlt::Impl {
   long nnz = 0;
   PetscInt workspace_margin = 50;  // ICNTL(14), percent over the analysis' estimate
   Inertia inertia;
+  // Owned rows [lo, hi) of the full symmetric pattern (CSR, global column indices) and, per
+  // entry, the index of its value in the upper-triangle input: built once in analyze(), so
+  // that each refactorization is a gather plus MatSetValues, without allocations.
+  std::vector<PetscInt> row_start, columns;
+  std::vector<Index> source;
+  std::vector<PetscScalar> values;
 
   ~Impl() { destroy(); }
   void destroy() {
@@ -57,14 +63,33 @@ struct PetscMumpsLdlt::Impl {
     nnz = 0;
   }
 
-  // The full symmetric matrix from A's upper triangle, rows [lo, hi) inserted.
-  FactorResult fill(const SparseMatrix& upper) {
-    const SparseMatrix full = SparseMatrix(upper.selfadjointView<Eigen::Upper>());
-    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows = full;
-    LCPRELAX_PETSC(MatZeroEntries(A), "MatZeroEntries");
+  // The owned rows of the full pattern and their sources in the upper triangle U: the
+  // entries of U's values are numbered 1..nnz, mirrored by selfadjointView, read back.
+  void build_pattern(const SparseMatrix& upper) {
+    SparseMatrix numbered = upper;
+    for (Index k = 0; k < numbered.nonZeros(); ++k) numbered.valuePtr()[k] = static_cast<double>(k + 1);
+    const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows =
+        SparseMatrix(numbered.selfadjointView<Eigen::Upper>());
+    row_start.assign(1, 0);
+    columns.clear();
+    source.clear();
     for (PetscInt r = lo; r < hi; ++r) {
-      const int start = rows.outerIndexPtr()[r], count = rows.outerIndexPtr()[r + 1] - start;
-      LCPRELAX_PETSC(MatSetValues(A, 1, &r, count, rows.innerIndexPtr() + start, rows.valuePtr() + start, INSERT_VALUES),
+      for (int k = rows.outerIndexPtr()[r]; k < rows.outerIndexPtr()[r + 1]; ++k) {
+        columns.push_back(rows.innerIndexPtr()[k]);
+        source.push_back(static_cast<Index>(rows.valuePtr()[k]) - 1);
+      }
+      row_start.push_back(static_cast<PetscInt>(columns.size()));
+    }
+    values.resize(columns.size());
+  }
+
+  // Every entry of the owned rows is set (INSERT_VALUES on the whole pattern).
+  FactorResult fill(const SparseMatrix& upper) {
+    for (std::size_t j = 0; j < source.size(); ++j) values[j] = upper.valuePtr()[source[j]];
+    for (PetscInt r = lo; r < hi; ++r) {
+      const PetscInt start = row_start[static_cast<std::size_t>(r - lo)];
+      const PetscInt count = row_start[static_cast<std::size_t>(r - lo) + 1] - start;
+      LCPRELAX_PETSC(MatSetValues(A, 1, &r, count, columns.data() + start, values.data() + start, INSERT_VALUES),
                      "MatSetValues");
     }
     LCPRELAX_PETSC(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
@@ -94,12 +119,11 @@ FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
   m.lo = m.hi - local;
 
   // Preallocation of the owned rows of the full symmetric pattern.
-  const SparseMatrix full = SparseMatrix(A.selfadjointView<Eigen::Upper>());
-  const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows = full;
+  m.build_pattern(A);
   std::vector<PetscInt> d_nnz(static_cast<std::size_t>(local), 0), o_nnz(static_cast<std::size_t>(local), 0);
   for (PetscInt r = m.lo; r < m.hi; ++r)
-    for (int k = rows.outerIndexPtr()[r]; k < rows.outerIndexPtr()[r + 1]; ++k) {
-      const int c = rows.innerIndexPtr()[k];
+    for (PetscInt k = m.row_start[static_cast<std::size_t>(r - m.lo)]; k < m.row_start[static_cast<std::size_t>(r - m.lo) + 1]; ++k) {
+      const PetscInt c = m.columns[static_cast<std::size_t>(k)];
       ++(c >= m.lo && c < m.hi ? d_nnz : o_nnz)[static_cast<std::size_t>(r - m.lo)];
     }
   LCPRELAX_PETSC(MatCreateAIJ(m.comm, local, local, m.n, m.n, 0, d_nnz.data(), 0, o_nnz.data(), &m.A), "MatCreateAIJ");

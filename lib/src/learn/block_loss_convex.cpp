@@ -1,5 +1,7 @@
 // The convex block loss: the convex block model by the interior point, ℓ = (v⁺ − v̄)²,
 // gradient by QpSolver::backward (learn/block_losses.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/learn/block_losses.hpp>
 #include <lcprelax/models/block1d.hpp>
@@ -10,8 +12,8 @@ namespace lcprelax::learn {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using detail::Clock;
+using detail::since;
 
 struct ConvexWorkspace {
   QpSolver solver;

@@ -1,5 +1,7 @@
 // The hard block loss: Lemke on the block's LCP, gradient by LemkeSolver::backward
 // (learn/block_losses.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/learn/block_losses.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/block1d.hpp>
@@ -10,8 +12,8 @@ namespace lcprelax::learn {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using detail::Clock;
+using detail::since;
 
 class BlockHardObjective final : public BlockObjective {
  public:

@@ -1,5 +1,7 @@
 // The relaxed block loss: the soft-LCP QP of learn/relaxed_lcp.hpp per transition, gradient
 // by the envelope theorem (learn/block_losses.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/learn/block_losses.hpp>
 #include <lcprelax/models/block1d.hpp>
 
@@ -9,8 +11,8 @@ namespace lcprelax::learn {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using detail::Clock;
+using detail::since;
 
 class BlockRelaxedObjective final : public BlockObjective {
  public:

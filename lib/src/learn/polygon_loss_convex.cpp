@@ -1,5 +1,7 @@
 // The convex two-phase loss of a polygon sample, with the deviation penalty, gradient by
 // QpSolver::backward through both phases (polygon_losses.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/learn/polygon_losses.hpp>
@@ -14,9 +16,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};  // as convex_model.cpp
 
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using detail::since;
 
 bool accepted(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
 

@@ -1,5 +1,7 @@
 // The hard loss of a polygon sample: Lemke on the Stewart–Trinkle LCP, gradient by
 // LemkeSolver::backward chained through the LCP's tangents (polygon_losses.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/learn/polygon_losses.hpp>
 #include <lcprelax/lcp/lemke.hpp>
@@ -9,9 +11,7 @@
 namespace lcprelax::learn {
 namespace {
 
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using detail::since;
 
 }  // namespace
 

@@ -1,6 +1,8 @@
 // The relaxed loss of a polygon sample: relaxed_lcp.hpp on the Stewart–Trinkle LCP with the
 // prediction map v⁺ = P z + p, gradient by the envelope theorem chained through the LCP's
 // tangents (polygon_losses.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/learn/polygon_losses.hpp>
 
@@ -9,9 +11,7 @@
 namespace lcprelax::learn {
 namespace {
 
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using detail::since;
 
 }  // namespace
 

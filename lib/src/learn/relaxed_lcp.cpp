@@ -1,5 +1,7 @@
 // The relaxed (soft-LCP) loss of one sample and its envelope/adjoint gradients
 // (learn/relaxed_lcp.hpp).
+#include "elapsed.hpp"
+
 #include <lcprelax/learn/relaxed_lcp.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/sparse/cholmod_llt.hpp>
@@ -73,8 +75,8 @@ void RelaxedLcpData::validate(const RelaxedLcpOptions& options) const {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using detail::Clock;
+using detail::since;
 
 // A matrix with A's pattern and values f(row, col).
 template <class F>
