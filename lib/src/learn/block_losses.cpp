@@ -57,7 +57,8 @@ void BlockObjective::prepare(const ParameterSet& /*theta*/, int threads) {
 
 BlockLossTimings BlockObjective::timings() const {
   BlockLossTimings t;
-  for (const BlockLossTimings& s : timings_) {
+  for (const ThreadTimings& padded : timings_) {
+    const BlockLossTimings& s = padded.t;
     t.assembly += s.assembly;
     t.solve += s.solve;
     t.backward += s.backward;
@@ -67,7 +68,7 @@ BlockLossTimings BlockObjective::timings() const {
 }
 
 void BlockObjective::reset_timings() {
-  for (BlockLossTimings& t : timings_) t = BlockLossTimings();
+  for (ThreadTimings& t : timings_) t.t = BlockLossTimings();
 }
 
 BlockObjective::Theta BlockObjective::read_theta(const ParameterSet& theta) const {
