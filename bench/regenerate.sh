@@ -17,7 +17,8 @@ run() { echo "== $*" >&2; "$@"; }
 
 run "$B/run_maros_meszaros" tests/data/maros_meszaros --out "$R/maros_meszaros.csv" --time-limit 60 > "$R/maros_meszaros.txt"
 run "$B/bench_qp_random" --benchmark_out="$R/qp_random.json" --benchmark_out_format=json > "$R/qp_random.txt"
-OMP_NUM_THREADS=1 run "$B/bench_lemke" > "$R/lemke_sparse_vs_dense.txt"
+run "$B/run_qp_scaling" --csv "$R/qp_scaling.csv" > "$R/qp_scaling.txt"
+OMP_NUM_THREADS=1 run "$B/bench_lemke" --benchmark_out="$R/lemke.json" --benchmark_out_format=json > "$R/lemke_sparse_vs_dense.txt"
 if [ -x "$B/run_lemke_peers" ]; then run "$B/run_lemke_peers" tests/data/siconos --out "$R/lemke_peers.csv" > "$R/lemke_peers.txt"; else echo "Siconos not built: lemke peers skipped" >&2; fi
 if [ "$QUICK" = "--quick" ]; then
   run "$B/run_pile_scaling" --sizes 10,20,50,100,200 --csv "$R/pile_scaling.csv" > "$R/pile_scaling.txt"
@@ -35,4 +36,18 @@ fi
 run "$B/run_stiff_report" --csv "$R/stiff_report.csv" > "$R/stiff_report.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
 run "$B/bench_learn_polygon" --benchmark_min_time=0.5 > "$R/learn_polygon.txt"
+run "$B/run_learn_throughput" --threads 1,2 --csv "$R/learn_throughput.csv" > "$R/learn_throughput.txt"
+run "$B/run_kkt_backends" --csv "$R/kkt_backends.csv" > "$R/kkt_backends.txt"
+# The same on 2 MPI ranks, appended, when the build has PETSc/MPI and mpiexec exists.
+if command -v mpiexec > /dev/null && "$B/run_learn_throughput" --check-mpi; then
+  if [ "$(id -u)" = 0 ]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+  MPI=(mpiexec -n 2 --oversubscribe)
+  run "${MPI[@]}" "$B/run_learn_throughput" --threads 1 --csv "$R/learn_throughput.csv" --append >> "$R/learn_throughput.txt"
+  run "${MPI[@]}" "$B/run_kkt_backends" --backends mumps_distributed --csv "$R/kkt_backends.csv" --append >> "$R/kkt_backends.txt"
+else
+  echo "no PETSc/MPI build or no mpiexec: the 2-rank rows are skipped" >&2
+fi
+run "$B/run_learn_convergence" --csv "$R/learn_convergence.csv" > "$R/learn_convergence.txt"
+run "$B/run_learn_convergence" --problems polygon --polygon-data cli --csv "$R/learn_convergence_polygon_cli.csv" \
+  > "$R/learn_convergence_polygon_cli.txt"
 run "$B/run_report_plots" --results "$R" --out "$R/plots"

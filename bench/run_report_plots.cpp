@@ -12,63 +12,66 @@
 //                            run time (experiment lcp; errors of 0 are not drawn on the log axis)
 //   work_precision_pile.png  pile trajectory error against run time, one line per horizon
 //   pile_scaling.png         CPU seconds per step against contacts (log-log), per model,
-//                            1 thread (pile_scaling.csv, rows phase = window)
+//                            1 thread (pile_scaling.csv, rows phase = window), fitted slopes
+//   qp_scaling.png           forward and backward CPU time against n, slopes (qp_scaling.csv)
+//   lemke_scaling.png        dense vs sparse Lemke, CPU time per solve against n on the
+//                            piles and random P-matrix LCPs, slopes over n ≥ 100
+//                            (lemke.json: bench_lemke --benchmark_out_format=json)
+//   learn_throughput_{block,polygon}.png  samples/s against OpenMP threads (1 rank) and
+//                            MPI ranks (1 thread) per method (learn_throughput.csv)
+//   kkt_backends.png         QP wall time per KKT backend and rank count against problem
+//                            size (kkt_backends.csv)
+//   learn_convergence_{block,polygon}.png  learned-parameter error against training wall
+//                            time per method (learn_convergence.csv; errors below 1e-12
+//                            drawn at 1e-12)
+// Slopes: least squares of log y against log x (pile_timing.hpp loglog_slope).
 // A missing CSV skips its plots with a message; without Cairo nothing is drawn (exit 1).
+#include "csv_table.hpp"
+#include "pile_timing.hpp"
+
 #include <lcprelax/scenes/line_plot.hpp>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
 
-using Row = std::map<std::string, std::string>;
+using Row = lcprelax::bench::CsvRow;
+using lcprelax::bench::read_csv;
 
-// A small CSV reader: header line, comma-separated fields, "…" quoting without commas inside.
-std::vector<Row> read_csv(const std::string& path) {
-  std::vector<Row> rows;
-  std::ifstream in(path);
-  if (!in) return rows;
-  auto split = [](const std::string& line) {
-    std::vector<std::string> out;
-    std::string field;
-    bool quoted = false;
-    for (char c : line) {
-      if (c == '"') quoted = !quoted;
-      else if (c == ',' && !quoted) out.push_back(field), field.clear();
-      else field += c;
-    }
-    out.push_back(field);
-    return out;
-  };
-  std::string line;
-  if (!std::getline(in, line)) return rows;
-  const std::vector<std::string> header = split(line);
-  while (std::getline(in, line)) {
-    const std::vector<std::string> f = split(line);
-    Row r;
-    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) r[header[i]] = f[i];
-    rows.push_back(r);
-  }
-  return rows;
+double num(const Row& r, const std::string& key) { return lcprelax::bench::csv_number(r, key); }
+std::string text(const Row& r, const std::string& key) { return lcprelax::bench::csv_text(r, key); }
+
+// Appends ", slope S" (least-squares slope of log y against log x over the series' points
+// with x ≥ from) to the legend entry.
+lcprelax::LineSeries with_slope(lcprelax::LineSeries s, double from = 0.0) {
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < s.x.size(); ++i)
+    if (s.x[i] >= from) x.push_back(s.x[i]), y.push_back(s.y[i]);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, ", slope %.2f", lcprelax::bench::loglog_slope(x, y));
+  s.name += buf;
+  return s;
 }
 
-double num(const Row& r, const std::string& key) {
-  const auto it = r.find(key);
-  if (it == r.end() || it->second.empty()) return NAN;
-  try {
-    return std::stod(it->second);
-  } catch (...) {
-    return NAN;
-  }
+lcprelax::LinePlotOptions log_log(const std::string& title, const std::string& x, const std::string& y) {
+  lcprelax::LinePlotOptions o;
+  o.title = title;
+  o.x_label = x;
+  o.y_label = y;
+  o.log_x = o.log_y = true;
+  return o;
 }
 
 void qp_plot(const std::vector<Row>& rows, const std::string& out) {
@@ -77,8 +80,8 @@ void qp_plot(const std::vector<Row>& rows, const std::string& out) {
   double clp_time = 0.0;
   std::vector<double> clp_errors;
   for (const Row& r : rows) {
-    if (r.at("experiment") != "qp") continue;
-    if (r.at("solver") == "clp-barrier") {
+    if (text(r, "experiment") != "qp") continue;
+    if (text(r, "solver") == "clp-barrier") {
       clp_time += num(r, "seconds");
       clp_errors.push_back(num(r, "error"));
       continue;
@@ -110,8 +113,8 @@ void qp_plot(const std::vector<Row>& rows, const std::string& out) {
 void lcp_plot(const std::vector<Row>& rows, const std::string& out) {
   lcprelax::LineSeries lemke{"Lemke", {}, {}, false, true}, ipm{"interior point (eps 1e-4 ... 1e-10)", {}, {}, false, true};
   for (const Row& r : rows) {
-    if (r.at("experiment") != "lcp") continue;
-    lcprelax::LineSeries& s = r.at("solver") == "lemke" ? lemke : ipm;
+    if (text(r, "experiment") != "lcp") continue;
+    lcprelax::LineSeries& s = text(r, "solver") == "lemke" ? lemke : ipm;
     s.x.push_back(num(r, "seconds"));
     s.y.push_back(num(r, "error"));
   }
@@ -126,9 +129,9 @@ void lcp_plot(const std::vector<Row>& rows, const std::string& out) {
 void pile_plot(const std::vector<Row>& rows, const std::string& out) {
   std::map<std::string, lcprelax::LineSeries> lines;
   for (const Row& r : rows) {
-    if (r.at("experiment") != "pile" || r.at("solver") != "convex-ipm" || num(r, "error") <= 0) continue;
-    lcprelax::LineSeries& s = lines[r.at("problem")];
-    s.name = r.at("problem");
+    if (text(r, "experiment") != "pile" || text(r, "solver") != "convex-ipm" || num(r, "error") <= 0) continue;
+    lcprelax::LineSeries& s = lines[text(r, "problem")];
+    s.name = text(r, "problem");
     s.markers = true;
     s.x.push_back(num(r, "seconds"));
     s.y.push_back(num(r, "error"));
@@ -146,20 +149,133 @@ void pile_plot(const std::vector<Row>& rows, const std::string& out) {
 void scaling_plot(const std::vector<Row>& rows, const std::string& out) {
   std::map<std::string, lcprelax::LineSeries> lines;
   for (const Row& r : rows) {
-    if (r.at("phase") != "window" || r.at("threads") != "1") continue;
-    lcprelax::LineSeries& s = lines[r.at("model")];
-    s.name = r.at("model") + " model, 1 thread";
+    if (text(r, "phase") != "window" || text(r, "threads") != "1") continue;
+    lcprelax::LineSeries& s = lines[text(r, "model")];
+    s.name = text(r, "model") + " model, 1 thread";
     s.markers = true;
     s.x.push_back(num(r, "contacts_mean"));
     s.y.push_back(num(r, "cpu_per_step"));
   }
   std::vector<lcprelax::LineSeries> series;
-  for (auto& [k, s] : lines) series.push_back(s);
+  for (auto& [k, s] : lines) series.push_back(with_slope(s));
   lcprelax::LinePlotOptions o;
-  o.title = "Pile: CPU time per step vs contacts";
+  o.title = "Pile: CPU time per step vs contacts (least-squares log-log slopes)";
   o.x_label = "contacts (mean over the timed steps)";
   o.y_label = "CPU seconds per step";
   o.log_x = o.log_y = true;
+  lcprelax::write_line_plot(out, series, o);
+}
+
+void qp_scaling_plot(const std::vector<Row>& rows, const std::string& out) {
+  lcprelax::LineSeries fwd{"forward (setup + solve)", {}, {}, true, true};
+  lcprelax::LineSeries bwd{"backward (adjoint)", {}, {}, true, true, true};
+  for (const Row& r : rows) {
+    if (text(r, "status") != "solved" && text(r, "status") != "solved_inaccurate") continue;
+    fwd.x.push_back(num(r, "n")), fwd.y.push_back(num(r, "forward_cpu_s"));
+    bwd.x.push_back(num(r, "n")), bwd.y.push_back(num(r, "backward_cpu_s"));
+  }
+  lcprelax::write_line_plot(out, {with_slope(fwd), with_slope(bwd)},
+                            log_log("Random sparse QPs: CPU time vs variables (least-squares log-log slopes)",
+                                    "variables n", "CPU seconds (fastest run)"));
+}
+
+// Google Benchmark JSON of bench_lemke: CPU time of one solve against the LCP size n.
+void lemke_plot(const std::string& path, const std::string& out) {
+  std::ifstream in(path);
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s: Lemke plot skipped\n", path.c_str(), e.what());
+    return;
+  }
+  std::map<std::string, lcprelax::LineSeries> lines;
+  for (const nlohmann::json& b : j.value("benchmarks", nlohmann::json::array())) {
+    const std::string name = b.value("name", "");
+    const bool pile = name.rfind("BM_Fc2dPile/", 0) == 0, random = name.rfind("BM_RandomP/", 0) == 0;
+    if ((!pile && !random) || b.value("run_type", "") != "iteration" || b.value("solved", 0.0) == 0.0) continue;
+    const std::string method = name.find("/dense/") != std::string::npos ? "dense" : "sparse";
+    const std::string key = std::string(pile ? "fc2d pile" : "random P-matrix") + ", " + method;
+    lcprelax::LineSeries& s = lines[key];
+    s.name = key, s.markers = true, s.dashed = random;
+    const std::string unit = b.value("time_unit", "ns");
+    const double scale = unit == "ms" ? 1e-3 : unit == "us" ? 1e-6 : unit == "ns" ? 1e-9 : 1.0;
+    s.x.push_back(b.value("n", NAN)), s.y.push_back(scale * b.value("cpu_time", NAN));
+  }
+  std::vector<lcprelax::LineSeries> series;
+  for (auto& [k, s] : lines) series.push_back(with_slope(s, 100));
+  lcprelax::write_line_plot(out, series,
+                            log_log("Lemke, dense vs sparse basis: CPU time per solve (slopes fitted over n >= 100)",
+                                    "LCP size n", "CPU seconds per setup + solve"));
+}
+
+void throughput_plot(const std::vector<Row>& rows, const std::string& problem, const std::string& out) {
+  std::map<std::string, lcprelax::LineSeries> lines;
+  for (const Row& r : rows) {
+    if (text(r, "problem") != problem) continue;
+    const int ranks = static_cast<int>(num(r, "ranks")), threads = static_cast<int>(num(r, "threads"));
+    const std::string m = text(r, "method");
+    if (ranks == 1) {  // threads series (ranks = 1)
+      lcprelax::LineSeries& s = lines[m + ", threads"];
+      s.name = m + ": 1 rank x T threads", s.markers = true;
+      s.x.push_back(threads), s.y.push_back(num(r, "samples_per_s"));
+    }
+    if (threads == 1) {  // ranks series (threads = 1)
+      lcprelax::LineSeries& s = lines[m + ", ranks"];
+      s.name = m + ": R ranks x 1 thread", s.markers = true, s.dashed = true;
+      s.x.push_back(ranks), s.y.push_back(num(r, "samples_per_s"));
+    }
+  }
+  std::vector<lcprelax::LineSeries> series;
+  for (auto& [k, s] : lines) {
+    std::vector<std::size_t> order(s.x.size());  // sort by workers
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.x[a] < s.x[b]; });
+    lcprelax::LineSeries sorted = s;
+    for (std::size_t i = 0; i < order.size(); ++i) sorted.x[i] = s.x[order[i]], sorted.y[i] = s.y[order[i]];
+    series.push_back(sorted);
+  }
+  lcprelax::LinePlotOptions o = log_log("Learning throughput, " + problem + ": loss + gradient over the dataset",
+                                        "workers (OpenMP threads or MPI ranks)", "samples per second");
+  o.log_x = false;
+  o.x_min = 0.8, o.x_max = 2.2;
+  lcprelax::write_line_plot(out, series, o);
+}
+
+void kkt_plot(const std::vector<Row>& rows, const std::string& out) {
+  std::map<std::string, std::map<double, double>> points;  // series → size → seconds
+  for (const Row& r : rows) {
+    if (text(r, "status") != "solved" && text(r, "status") != "solved_inaccurate") continue;
+    const std::string key = text(r, "backend") + ", " + text(r, "ranks") + (text(r, "ranks") == "1" ? " rank" : " ranks");
+    points[key][num(r, "n") + num(r, "rows")] = num(r, "total_s");
+  }
+  std::vector<lcprelax::LineSeries> series;
+  for (auto& [k, p] : points) {
+    lcprelax::LineSeries s{k, {}, {}, true, true, k.rfind("cholmod", 0) != 0};
+    for (auto& [x, y] : p) s.x.push_back(x), s.y.push_back(y);
+    series.push_back(s);
+  }
+  lcprelax::write_line_plot(out, series,
+                            log_log("QP solve by KKT backend (Maros-Meszaros + random QP; solved runs only)",
+                                    "variables + constraint rows", "wall seconds, setup + solve"));
+}
+
+void convergence_plot(const std::vector<Row>& rows, const std::string& problem, const std::string& out) {
+  std::map<std::string, lcprelax::LineSeries> lines;
+  for (const Row& r : rows) {
+    if (text(r, "problem") != problem) continue;
+    const std::string key = text(r, "method") + (problem == "block" ? ", mu0 = " + text(r, "init") + " truth" : "");
+    lcprelax::LineSeries& s = lines[key];
+    s.name = key, s.dashed = text(r, "init") == "0.3x";
+    s.x.push_back(num(r, "seconds")), s.y.push_back(std::max(num(r, "error"), 1e-12));
+  }
+  std::vector<lcprelax::LineSeries> series;
+  for (auto& [k, s] : lines) series.push_back(s);
+  lcprelax::LinePlotOptions o = log_log(
+      problem == "block" ? "Learning the block's mu: relative error vs training time (truth 0.1)"
+                         : "Learning the polygon: largest relative parameter error vs training time",
+      "wall seconds of training", problem == "block" ? "|mu - mu*| / mu*" : "largest relative error");
+  o.log_x = false;
   lcprelax::write_line_plot(out, series, o);
 }
 
@@ -189,6 +305,28 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "no %s/pile_scaling.csv: scaling plot skipped\n", results.c_str());
   else
     scaling_plot(scaling, out + "/pile_scaling.png");
+  // CSV → plot(s); a missing CSV skips its plots with a message.
+  auto each = [&](const std::string& csv, const std::function<void(const std::vector<Row>&)>& draw) {
+    const std::vector<Row> rows = read_csv(results + "/" + csv);
+    if (rows.empty())
+      std::fprintf(stderr, "no %s/%s: its plots skipped\n", results.c_str(), csv.c_str());
+    else
+      draw(rows);
+  };
+  each("qp_scaling.csv", [&](const std::vector<Row>& r) { qp_scaling_plot(r, out + "/qp_scaling.png"); });
+  if (std::filesystem::exists(results + "/lemke.json"))
+    lemke_plot(results + "/lemke.json", out + "/lemke_scaling.png");
+  else
+    std::fprintf(stderr, "no %s/lemke.json: Lemke plot skipped\n", results.c_str());
+  each("learn_throughput.csv", [&](const std::vector<Row>& r) {
+    throughput_plot(r, "block", out + "/learn_throughput_block.png");
+    throughput_plot(r, "polygon", out + "/learn_throughput_polygon.png");
+  });
+  each("kkt_backends.csv", [&](const std::vector<Row>& r) { kkt_plot(r, out + "/kkt_backends.png"); });
+  each("learn_convergence.csv", [&](const std::vector<Row>& r) {
+    convergence_plot(r, "block", out + "/learn_convergence_block.png");
+    convergence_plot(r, "polygon", out + "/learn_convergence_polygon.png");
+  });
   std::printf("plots written to %s\n", out.c_str());
   return 0;
 }

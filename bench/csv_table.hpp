@@ -1,0 +1,62 @@
+#pragma once
+// Reading the benchmark CSVs back (run_report_plots.cpp; header-only): a header line,
+// comma-separated fields, "…" quoting without commas inside (as Google Benchmark's
+// --benchmark_out_format=csv writes names and labels). Rows are maps column → text.
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lcprelax::bench {
+
+using CsvRow = std::map<std::string, std::string>;
+
+/// The rows of `path` (empty when the file is missing or has no header). Lines before the
+/// header that Google Benchmark may print are not expected: the header is the first line.
+inline std::vector<CsvRow> read_csv(const std::string& path) {
+  std::vector<CsvRow> rows;
+  std::ifstream in(path);
+  if (!in) return rows;
+  auto split = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::string field;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      else if (c == ',' && !quoted) out.push_back(field), field.clear();
+      else field += c;
+    }
+    out.push_back(field);
+    return out;
+  };
+  std::string line;
+  if (!std::getline(in, line)) return rows;
+  const std::vector<std::string> header = split(line);
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = split(line);
+    CsvRow r;
+    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) r[header[i]] = f[i];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+/// The number in column `key` (NaN when missing, empty or not a number).
+inline double csv_number(const CsvRow& r, const std::string& key) {
+  const auto it = r.find(key);
+  if (it == r.end() || it->second.empty()) return NAN;
+  try {
+    return std::stod(it->second);
+  } catch (...) {
+    return NAN;
+  }
+}
+
+/// The text in column `key` ("" when missing).
+inline std::string csv_text(const CsvRow& r, const std::string& key) {
+  const auto it = r.find(key);
+  return it == r.end() ? std::string() : it->second;
+}
+
+}  // namespace lcprelax::bench
