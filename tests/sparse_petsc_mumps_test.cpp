@@ -4,8 +4,9 @@
 // ≤ 1e-12 and equals CHOLMOD's to 1e-10; the inertia is (60 positive, 25 negative) like
 // CHOLMOD's; refactorizing new values on the same pattern counts one more numeric
 // factorization and solves the new matrix; a changed pattern gives pattern_mismatch, NaN
-// gives invalid_input, a singular matrix zero_pivot, solve() before factorize()
-// not_analyzed — statuses with messages, never an abort.
+// gives invalid_input, a singular matrix zero_pivot (also without pivoting, where MUMPS'
+// static pivoting would otherwise replace the zero pivot silently), solve() before
+// factorize() not_analyzed — statuses with messages, never an abort.
 // Without PETSc: analyze() returns invalid_input naming LCPRELAX_WITH_PETSC.
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/mpi_session.hpp>
@@ -128,6 +129,30 @@ TEST(PetscMumpsLdlt, FailuresAreStatuses) {
   const auto r = mumps.factorize(singular);
   EXPECT_EQ(r.status, FactorStatus::zero_pivot) << r.message;
   EXPECT_FALSE(r.message.empty());
+}
+
+// Without pivoting (the KKT backend's mode) MUMPS' static pivoting would silently replace
+// the zero pivot by 1e-300 and return a factor with entries ~1e300 (the cause of the
+// QADLITTL divergence with kkt_backend = mumps); it must be a zero_pivot status instead.
+TEST(PetscMumpsLdlt, StaticPivotOrderReportsReplacedPivots) {
+  PetscMumpsLdlt mumps(/*distributed=*/false, /*pivoting=*/false);
+  const SparseMatrix U = kkt_upper(40, 15, 1);
+  ASSERT_TRUE(mumps.analyze(U).ok());
+  ASSERT_TRUE(mumps.factorize(U).ok());
+  SparseMatrix singular = U;
+  for (int k = singular.outerIndexPtr()[5]; k < singular.outerIndexPtr()[6]; ++k) singular.valuePtr()[k] = 0.0;
+  for (int j = 6; j < singular.cols(); ++j)
+    for (int k = singular.outerIndexPtr()[j]; k < singular.outerIndexPtr()[j + 1]; ++k)
+      if (singular.innerIndexPtr()[k] == 5) singular.valuePtr()[k] = 0.0;
+  const auto r = mumps.factorize(singular);
+  EXPECT_EQ(r.status, FactorStatus::zero_pivot) << r.message;
+  DenseMatrix X = rhs(55, 1);
+  EXPECT_EQ(mumps.solve(X).status, FactorStatus::not_analyzed);  // no factor to use
+  ASSERT_TRUE(mumps.factorize(U).ok());                           // and it recovers
+  const DenseMatrix B = rhs(55, 1);
+  X = B;
+  ASSERT_TRUE(mumps.solve(X).ok());
+  EXPECT_LE(relative_residual(U, X, B), 1e-12);
 }
 
 TEST(MpiSession, OneProcessWithoutMpiexec) {

@@ -137,7 +137,8 @@ FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
     LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 24, 1), "ICNTL(24)");  // detect null pivots
   } else {
     // Static pivot order (CNTL(1) = 0) with MUMPS' static pivoting (CNTL(4) = 1e-300: pivots
-    // below ε·‖A‖ are replaced by that threshold with their sign), like CHOLMOD's LDLᵀ of a
+    // of magnitude below 1e-300 are replaced by that threshold with their sign; factorize()
+    // reports any such replacement, INFOG(25), as zero_pivot), like CHOLMOD's LDLᵀ of a
     // quasi-definite matrix; wrong-signed pivots still show in the inertia.
     LCPRELAX_PETSC(MatMumpsSetCntl(m.F, 1, 0.0), "CNTL(1)");
     LCPRELAX_PETSC(MatMumpsSetCntl(m.F, 4, 1e-300), "CNTL(4)");
@@ -193,6 +194,20 @@ FactorResult PetscMumpsLdlt::factorize(const SparseMatrix& A_in) {
     if (infog1 == -10) return detail::make_result(FactorStatus::zero_pivot, "MUMPS: numerically singular matrix" + codes);
     if (e) return petsc_failure(e, "numeric factorization");
     return detail::make_result(FactorStatus::internal_error, "MUMPS INFOG(1) = " + std::to_string(infog1));
+  }
+  if (!pivoting_) {
+    // INFOG(25): pivots that MUMPS' static pivoting replaced (|d| < CNTL(4) = 1e-300, i.e.
+    // zero to working precision). The factor is then that of another matrix, with entries
+    // ~1e300: the refined solves returned NaN and the interior point diverged (QADLITTL
+    // with kkt_backend = mumps: 1 or 2 replaced pivots in three factorizations up to
+    // iteration 17, then NaN residuals and "iterates diverge"). CHOLMOD's LDLᵀ
+    // reports such a pivot; so does this backend now, and the QP solver raises its
+    // regularization and refactorizes (kkt/src/qp_solver.cpp, Impl::factorize).
+    PetscInt replaced = 0;
+    MatMumpsGetInfog(m.F, 25, &replaced);
+    if (replaced > 0)
+      return detail::make_result(FactorStatus::zero_pivot, "MUMPS static pivoting replaced " +
+                                                               std::to_string(replaced) + " tiny pivot(s)");
   }
   MatMumpsGetInfog(m.F, 12, &negative);
   MatMumpsGetInfog(m.F, 28, &null_pivots);

@@ -11,11 +11,18 @@
 // solve() with many right-hand sides, failures as statuses. With pivoting (the default)
 // MUMPS pivots (1×1 and 2×2, threshold CNTL(1) = 0.01), so any nonsingular symmetric
 // matrix factorizes; without (pivoting = false, CNTL(1) = 0: static pivot order, as
-// CHOLMOD's LDLᵀ, and MUMPS' static pivoting CNTL(4) = 0: pivots below ε‖A‖ replaced by
-// ±ε‖A‖, so no zero_pivot status, but their signs count in inertia()) it is meant for
+// CHOLMOD's LDLᵀ, and MUMPS' static pivoting with threshold CNTL(4) = 1e-300: only pivots
+// below 1e-300 in magnitude would be replaced; factorize() returns zero_pivot when one
+// was (INFOG(25) > 0), as CHOLMOD does for a zero pivot, and the pivot signs count in
+// inertia()) it is meant for
 // quasi-definite matrices (Vanderbei 1995), which need no pivoting, and avoids the delayed pivots that made MUMPS run out of its workspace on
 // interior-point KKT matrices near the solution (measured on STCQP1: INFOG(1) = −9 at every
-// regularization). inertia() reports the signs of D from
+// regularization). The KKT backend (kkt/src/kkt_system.cpp) uses pivoting = false. Where
+// CHOLMOD's LDLᵀ finds a wrong-signed pivot and the QP solver raises its regularization ρ
+// tenfold, MUMPS may accept the same matrix: then the two backends end a solve at
+// different ρ, which only matters where the KKT matrix is singular to working precision
+// (a non-unique optimum, e.g. QAFIRO: there the adjoint grows like 1/ρ with either
+// backend; tests/mpi/mpi_qp_mumps_distributed_test.cpp). inertia() reports the signs of D from
 // MUMPS (INFOG(12) negative pivots; with pivoting, null pivots detected with
 // ICNTL(24) = 1 give zero_pivot).
 //
