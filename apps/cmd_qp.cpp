@@ -23,7 +23,7 @@ struct QpOptions {
   double eps = QpSettings{}.eps_abs;
   int max_iter = QpSettings{}.max_iter;
   std::string solution;
-  std::string kkt_backend = "cholmod";
+  std::string kkt_backend = "automatic";
   bool json = false;
 };
 
@@ -33,10 +33,12 @@ QpSettings settings_from(const QpOptions& o) {
   QpSettings s;
   s.eps_abs = o.eps;
   s.max_iter = o.max_iter;
-  if (o.kkt_backend == "cholmod") s.kkt_backend = KktBackend::cholmod;
+  if (o.kkt_backend == "automatic") s.kkt_backend = KktBackend::automatic;
+  else if (o.kkt_backend == "cholmod") s.kkt_backend = KktBackend::cholmod;
+  else if (o.kkt_backend == "dense") s.kkt_backend = KktBackend::dense;
   else if (o.kkt_backend == "mumps") s.kkt_backend = KktBackend::mumps;
   else if (o.kkt_backend == "mumps-distributed") s.kkt_backend = KktBackend::mumps_distributed;
-  else throw InputError("--kkt-backend: must be cholmod, mumps or mumps-distributed");
+  else throw InputError("--kkt-backend: must be automatic, cholmod, dense, mumps or mumps-distributed");
   const std::string error = s.validation_error();
   if (!error.empty()) throw InputError("invalid solver settings: " + error);
   return s;
@@ -107,8 +109,8 @@ Command add_qp_command(CLI::App& parent) {
   qp->add_option("--max-iter", options->max_iter, "Interior-point iteration limit")->capture_default_str();
   qp->add_option("--solution", options->solution, "Write x, y_rows and y_bounds to this JSON file");
   qp->add_option("--kkt-backend", options->kkt_backend,
-                 "KKT factorization: cholmod, mumps (PETSc, this process) or mumps-distributed (over the MPI ranks "
-                 "of mpiexec)")
+                 "KKT factorization: automatic (dense up to QpSettings::dense_max_kkt rows, else cholmod), "
+                 "cholmod, dense, mumps (PETSc, this process) or mumps-distributed (over the MPI ranks of mpiexec)")
       ->capture_default_str();
   add_json_flag(*qp, options->json);
   return Command{qp, [options] { return run_qp(*options); }};

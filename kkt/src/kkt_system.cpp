@@ -6,6 +6,7 @@
 
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/cholmod_llt.hpp>
+#include <lcprelax/sparse/dense_ldlt.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -95,16 +96,25 @@ bool KktSystem::build_eliminated_pattern(const StandardForm& f) {
   return true;
 }
 
+KktBackend KktSystem::resolve_backend(KktBackend requested, const StandardForm& f, int dense_max_kkt) {
+  if (requested != KktBackend::automatic) return requested;
+  return static_cast<long>(f.n) + f.me + f.mg <= dense_max_kkt ? KktBackend::dense : KktBackend::cholmod;
+}
+
 bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message) {
+  if (backend == KktBackend::automatic) backend = KktBackend::cholmod;  // callers resolve it first
+  const bool dense = backend == KktBackend::dense;
   KktForm form = requested;
   if (f.me > 0) form = KktForm::full;  // the eliminated form has no equality block
-  if (backend != KktBackend::cholmod) form = KktForm::full;  // MUMPS: the quasi-definite LDLᵀ
+  if (uses_petsc(backend)) form = KktForm::full;  // MUMPS: the quasi-definite LDLᵀ
   std::unique_ptr<sparse::Factorization> full, elim;
   SparseMatrix full_K;
   if (form != KktForm::eliminated) {
     build_full_pattern(f);
     if (backend == KktBackend::cholmod)
       full = std::make_unique<sparse::CholmodLdlt>();
+    else if (dense)
+      full = std::make_unique<sparse::DenseLdlt>();
     else
       full = std::make_unique<sparse::PetscMumpsLdlt>(backend == KktBackend::mumps_distributed, /*pivoting=*/false);
     if (auto r = full->analyze(K_); !r.ok()) {
@@ -120,7 +130,10 @@ bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backe
         return false;
       }
     } else {
-      elim = std::make_unique<sparse::CholmodLlt>();
+      if (dense)
+        elim = std::make_unique<sparse::DenseLdlt>();
+      else
+        elim = std::make_unique<sparse::CholmodLlt>();
       if (auto r = elim->analyze(K_); !r.ok()) {
         message = "KKT analysis failed: " + r.message;
         return false;
@@ -136,6 +149,7 @@ bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backe
     if (elim) build_full_pattern(f);  // restore the full pattern's maps
   }
   work_.resize(K_.rows());
+  backend_ = backend;
   return true;
 }
 
@@ -165,10 +179,12 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
     }
   }
   sparse::FactorResult r = factor_->factorize(K_);
-  if (r.ok() && form_ == KktForm::full) {
+  const auto* dense = backend_ == KktBackend::dense ? static_cast<const sparse::DenseLdlt*>(factor_.get()) : nullptr;
+  if (r.ok() && (form_ == KktForm::full || dense)) {  // dense eliminated form: n positive = SPD
     const auto* mumps = dynamic_cast<const sparse::PetscMumpsLdlt*>(factor_.get());
     const sparse::Inertia inertia =
-        mumps ? mumps->inertia() : static_cast<const sparse::CholmodLdlt&>(*factor_).inertia();
+        dense ? dense->inertia()
+        : mumps ? mumps->inertia() : static_cast<const sparse::CholmodLdlt&>(*factor_).inertia();
     if (inertia.positive != f.n) {
       r.status = sparse::FactorStatus::zero_pivot;
       r.message = "KKT factor has " + std::to_string(inertia.positive) + " positive pivots, expected " +

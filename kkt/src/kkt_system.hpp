@@ -13,6 +13,8 @@
 // the upper triangle of that quasi-definite matrix, CHOLMOD LDLᵀ. Eliminated form (only
 // when me = 0): H = P + Db + ρI + Gᵀ diag(Dg/(1 + δ Dg)) G by CHOLMOD supernodal LLᵀ.
 // The data → K index maps are built once, so refilling values is a scatter.
+// Backend dense (tiny problems): the same K (either form) by sparse::DenseLdlt, whose
+// pivot signs are checked in both forms (n positive pivots).
 // Solves are refined against K0 (iterative refinement; stop when the residual improves
 // less than 5× or reaches roundoff).
 #include "standard_form.hpp"
@@ -29,7 +31,10 @@ class KktSystem {
  public:
   /// Chooses the form (automatic: smaller predicted nnz(L)), builds pattern, maps and the
   /// symbolic analysis. Returns false with a message if the analysis fails.
+  /// `backend` must be resolved (not automatic: see resolve_backend).
   bool setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message);
+  /// automatic → dense when n + me + mg ≤ dense_max_kkt, else cholmod; others unchanged.
+  static KktBackend resolve_backend(KktBackend requested, const StandardForm& f, int dense_max_kkt);
   /// Fills values for (Db, Dg, ρ, δ, δ_g) and factorizes numerically.
   sparse::FactorResult factorize(const StandardForm& f, const Vector& Db, const Vector& Dg, double rho,
                                  double delta, double delta_rows);
@@ -39,6 +44,7 @@ class KktSystem {
             Vector& dz, int max_refinement) const;
 
   KktForm form() const { return form_; }
+  KktBackend backend() const { return backend_; }
   /// ‖K0·d − rhs‖∞ / (1 + ‖rhs‖∞) after the last solve's refinement.
   double last_relative_residual() const { return last_relative_residual_; }
   long factor_nnz() const;
@@ -53,6 +59,7 @@ class KktSystem {
                          Vector& dy, Vector& dz) const;
 
   KktForm form_ = KktForm::full;
+  KktBackend backend_ = KktBackend::cholmod;
   SparseMatrix K_;                       // upper triangle of the factorized matrix
   std::unique_ptr<sparse::Factorization> factor_;
   std::vector<Index> p_pos_;             // P entry k (off-diagonal) → K value slot, −1 for diagonal

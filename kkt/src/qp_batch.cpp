@@ -62,7 +62,7 @@ void parallel_for(int count, int threads, Body body) {
 std::vector<QpResult> solve_qp_batch(const std::vector<QpProblem>& problems, const QpSettings& settings,
                                      int threads) {
   std::vector<QpResult> results(problems.size());
-  if (settings.kkt_backend != KktBackend::cholmod) threads = 1;  // PETSc is not thread-safe
+  if (uses_petsc(settings.kkt_backend)) threads = 1;  // PETSc is not thread-safe
   parallel_for(static_cast<int>(problems.size()), threads,
                [&](int k, std::optional<QpSolver>& ws, const QpProblem*& last) {
                  solve_one(ws, last, problems[k], settings, results[k]);
@@ -75,7 +75,7 @@ void solve_qp_batch_backward(const std::vector<QpProblem>& problems, const std::
                              const QpSettings& settings, int threads) {
   results.assign(problems.size(), QpResult{});
   gradients.assign(problems.size(), QpGradient{});
-  if (settings.kkt_backend != KktBackend::cholmod) threads = 1;  // PETSc is not thread-safe
+  if (uses_petsc(settings.kkt_backend)) threads = 1;  // PETSc is not thread-safe
   parallel_for(static_cast<int>(problems.size()), threads,
                [&](int k, std::optional<QpSolver>& ws, const QpProblem*& last) {
                  if (static_cast<size_t>(k) >= dl_dx.size()) {

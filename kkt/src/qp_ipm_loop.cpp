@@ -187,6 +187,7 @@ const QpResult& QpSolver::solve() {
   QpInfo info;
   info.message.clear();
   info.kkt_form = m.kkt.form();
+  info.kkt_backend = m.kkt.backend();
   m.run(info);
   if (m.settings.infeasibility_lps &&
       (info.status == QpStatus::max_iterations || info.status == QpStatus::numerical_error)) {

@@ -26,7 +26,8 @@ std::string QpSettings::validation_error() const {
   if (os.str().empty() && ruiz_iterations < 0) os << "ruiz_iterations = " << ruiz_iterations << " must be >= 0";
   if (os.str().empty() && !(step_fraction > 0 && step_fraction < 1))
     os << "step_fraction = " << step_fraction << " must be in (0, 1)";
-  if (os.str().empty() && kkt_backend != KktBackend::cholmod && !sparse::petsc_available())
+  if (os.str().empty() && dense_max_kkt < 0) os << "dense_max_kkt = " << dense_max_kkt << " must be >= 0";
+  if (os.str().empty() && uses_petsc(kkt_backend) && !sparse::petsc_available())
     os << "kkt_backend = " << to_string(kkt_backend)
        << " needs PETSc, but lcprelax was built with LCPRELAX_WITH_PETSC=OFF (or without PETSc found)";
   return os.str();

@@ -46,7 +46,7 @@ void QpSolver::setup(const QpProblem& problem) {
   problem.validate();
   impl_->build(problem);
   std::string message;
-  if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->settings.kkt_backend, message))
+  if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message))
     throw std::runtime_error("QpSolver::setup: " + message);
   impl_->is_setup = true;
   impl_->has_warm_start = false;
@@ -64,7 +64,7 @@ void QpSolver::update(const QpProblem& problem) {
   impl_->build(problem);
   if (impl_->form.signature != old_signature) {  // rows changed between equality/one/two-sided
     std::string message;
-    if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->settings.kkt_backend, message))
+    if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message))
       throw std::runtime_error("QpSolver::update: " + message);
   }
   impl_->result = QpResult{};

@@ -44,6 +44,10 @@ struct QpSolver::Impl {
   double setup_seconds = 0;
 
   void build(const QpProblem& p);
+  /// settings.kkt_backend with automatic resolved on the current form (dense_max_kkt).
+  KktBackend kkt_backend() const {
+    return detail::KktSystem::resolve_backend(settings.kkt_backend, form, settings.dense_max_kkt);
+  }
   bool may_drop_row_regularization = true;  ///< false once a factorization with δ_g = 0 failed
   bool factorize(QpInfo& info);
   /// Newton step for the current rd, rp and side rc; returns refinement steps.

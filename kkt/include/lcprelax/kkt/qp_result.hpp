@@ -53,6 +53,7 @@ struct QpInfo {
   int factor_retries = 0;        ///< factorizations repeated with raised regularization
   int refinement_steps = 0;      ///< total iterative-refinement steps
   KktForm kkt_form = KktForm::automatic;  ///< the form actually used
+  KktBackend kkt_backend = KktBackend::automatic;  ///< the backend actually used
   long kkt_factor_nnz = 0;       ///< nnz of the KKT factor
   double setup_seconds = 0.0;
   double solve_seconds = 0.0;

@@ -27,9 +27,14 @@ constexpr const char* to_string(KktForm f) {
   return "unknown";
 }
 
-/// Which sparse factorization solves the KKT systems (forward iterations and backward()).
+/// Which factorization solves the KKT systems (forward iterations and backward()).
 enum class KktBackend {
-  cholmod,            ///< CHOLMOD: LDLᵀ of the full form or LLᵀ of the eliminated form (default)
+  automatic,          ///< dense when the full KKT dimension ≤ QpSettings::dense_max_kkt, else
+                      ///< cholmod (default; resolved at setup() and update(), reported in
+                      ///< QpInfo::kkt_backend)
+  cholmod,            ///< CHOLMOD: LDLᵀ of the full form or LLᵀ of the eliminated form
+  dense,              ///< dense LDLᵀ with diagonal pivoting (sparse/dense_ldlt.hpp) of the full
+                      ///< or the eliminated form, for tiny problems (O(N³) flops, N² memory)
   mumps,              ///< MUMPS LDLᵀ through PETSc, in this process (full form only; needs a
                       ///< PETSc build, sparse/petsc_mumps_ldlt.hpp; not for concurrent threads)
   mumps_distributed   ///< MUMPS LDLᵀ distributed over all MPI ranks: every rank must call
@@ -38,12 +43,17 @@ enum class KktBackend {
 
 constexpr const char* to_string(KktBackend b) {
   switch (b) {
+    case KktBackend::automatic: return "automatic";
     case KktBackend::cholmod: return "cholmod";
+    case KktBackend::dense: return "dense";
     case KktBackend::mumps: return "mumps";
     case KktBackend::mumps_distributed: return "mumps_distributed";
   }
   return "unknown";
 }
+
+/// Whether the backend runs through PETSc (needs a PETSc build; not thread-safe).
+constexpr bool uses_petsc(KktBackend b) { return b == KktBackend::mumps || b == KktBackend::mumps_distributed; }
 
 struct QpSettings {
   double eps_abs = 1e-9;          ///< absolute tolerance on residuals and gap
@@ -60,7 +70,13 @@ struct QpSettings {
   KktForm kkt_form = KktForm::automatic;
   /// mumps backends force the full form; takes effect at setup(); solve_qp_batch runs
   /// them on one thread (PETSc is not thread-safe).
-  KktBackend kkt_backend = KktBackend::cholmod;
+  KktBackend kkt_backend = KktBackend::automatic;
+  /// automatic: largest full KKT dimension factorized densely, N = n + rows of A + rows of
+  /// G with at least one finite side (a row with l = u counts once; variable bounds add
+  /// none). 0 = always cholmod.
+  /// Default from the measured crossover of bench/bench_qp_dense_vs_sparse.cpp (random QPs
+  /// with ~1.75n KKT rows: dense faster up to this size on a 2-core Debian 12 machine).
+  int dense_max_kkt = 48;
   bool verbose = false;           ///< one line per iteration on stderr
   /// When the iteration fails (stalls, diverges, hits max_iter), solve the auxiliary LPs of
   /// qp_infeasibility_lp.cpp that decide primal or dual infeasibility with a certificate.
