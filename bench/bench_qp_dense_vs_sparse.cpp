@@ -1,0 +1,160 @@
+// Dense vs sparse KKT factorization in the interior-point QP (QpSettings::kkt_backend):
+// where CHOLMOD's sparse path starts to win over the dense LDLᵀ (sparse/dense_ldlt.hpp),
+// which sets QpSettings::dense_max_kkt, and what the dense path buys the learning losses.
+//
+//   BM_QpSolve/n/backend      random sparse convex QP of n variables (random_qp.hpp: n/4
+//                             equalities, n/2 inequality rows, so a full KKT of ~1.75n
+//                             rows; n = 4 … 292 sweeps KKT dimensions 7 … 511), set up once;
+//                             each iteration is update(same problem) + solve() + backward(),
+//                             the learning losses' per-sample work. backend 0 = cholmod,
+//                             1 = dense. Counters: kkt_dim, iterations, factorizations,
+//                             kkt_form (1 full, 2 eliminated), ok (1 if solved).
+//   BM_LearnBlock/method/b    the block losses (as bench_learn_block.cpp: 400 transitions,
+//                             μ = 0.1, evaluated at μ = 0.3), 1 thread, relaxed (1) and
+//                             convex (2), backend b; counter samples_per_s.
+//   BM_LearnPolygon/method/b  the polygon losses (as bench_learn_polygon.cpp: 315 contact
+//                             samples at 25%-perturbed parameters), 1 thread, relaxed (1)
+//                             and convex (2), backend b; counter samples_per_s.
+// Compare rows with the same arguments but backend 0 and 1 from ONE run (shared machine).
+//
+//   build-dense/bench/bench_qp_dense_vs_sparse --benchmark_min_time=0.3
+#include "random_qp.hpp"
+
+#include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/kkt/qp_solver.hpp>
+#include <lcprelax/learn/block_losses.hpp>
+#include <lcprelax/learn/polygon_objective.hpp>
+#include <lcprelax/models/block1d.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace lcprelax;
+using namespace lcprelax::learn;
+
+constexpr std::uint64_t kSeed = 11;
+
+KktBackend backend_arg(std::int64_t b) { return b == 0 ? KktBackend::cholmod : KktBackend::dense; }
+
+void BM_QpSolve(benchmark::State& state) {
+  const Index n = static_cast<Index>(state.range(0));
+  QpSettings s;
+  s.kkt_backend = backend_arg(state.range(1));
+  const bench::RandomQp rq = bench::make_random_qp(n, kSeed);
+  QpSolver solver(s);
+  solver.setup(rq.problem);
+  QpInfo info = solver.solve().info;  // warm-up (and the counters)
+  bool ok = info.status == QpStatus::solved;
+  for (auto _ : state) {
+    solver.update(rq.problem);
+    const QpResult& r = solver.solve();
+    ok = ok && r.info.status == QpStatus::solved;
+    if (r.info.status != QpStatus::solved) continue;
+    const QpGradient g = solver.backward(rq.dl_dx);
+    benchmark::DoNotOptimize(g.dq.data());
+  }
+  const Index kkt_dim = rq.problem.num_variables() + rq.problem.num_equalities() + rq.problem.num_inequalities();
+  state.counters["kkt_dim"] = kkt_dim;
+  state.counters["iterations"] = info.iterations;
+  state.counters["factorizations"] = info.factorizations;
+  state.counters["kkt_form"] = static_cast<double>(info.kkt_form);
+  state.counters["ok"] = ok ? 1 : 0;
+  state.SetLabel(std::string(to_string(info.kkt_backend)) + " N=" + std::to_string(kkt_dim));
+}
+BENCHMARK(BM_QpSolve)
+    ->ArgsProduct({{4, 6, 8, 12, 16, 24, 32, 40, 48, 56, 64, 80, 96, 128, 160, 192, 256, 292}, {0, 1}})
+    ->ArgNames({"n", "dense"})
+    ->Unit(benchmark::kMicrosecond);
+
+const BlockDataset& block_data() {
+  static const BlockDataset d = [] {
+    BlockDataSettings s;
+    s.truth = Block1d{1.0, 1.0, 0.1};
+    s.samples = 400;
+    return generate_block_dataset(s);
+  }();
+  return d;
+}
+
+void BM_LearnBlock(benchmark::State& state) {
+  BlockLossSettings ls;
+  ls.qp.kkt_backend = backend_arg(state.range(1));
+  auto objective = make_block_objective(static_cast<BlockMethod>(state.range(0)), block_data(), ls);
+  const ParameterSet theta = block_parameters(0.3, 1.0, 1.0);
+  std::vector<Index> samples;
+  for (Index i = 0; i < block_data().size(); ++i) samples.push_back(i);
+  evaluate_mean(*objective, theta, samples, 1);  // workspaces and analyses
+  int failed = 0;
+  for (auto _ : state) {
+    const BatchResult r = evaluate_mean(*objective, theta, samples, 1);
+    failed += r.failed;
+    benchmark::DoNotOptimize(r.loss);
+  }
+  const double n = static_cast<double>(samples.size()) * static_cast<double>(state.iterations());
+  state.counters["samples_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
+  state.counters["failed"] = failed;
+  state.SetLabel(std::string(to_string(static_cast<BlockMethod>(state.range(0)))) + " " +
+                 to_string(ls.qp.kkt_backend));
+}
+BENCHMARK(BM_LearnBlock)
+    ->ArgsProduct({{static_cast<int>(BlockMethod::relaxed), static_cast<int>(BlockMethod::convex)}, {0, 1}})
+    ->ArgNames({"method", "dense"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+PolygonModel polygon_truth() {
+  PolygonModel truth;
+  Polygon p;
+  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
+  truth.shape = recentred(p);
+  truth.mu = 0.4;
+  truth.mass = 1.5;
+  truth.inertia = 0.06;
+  return truth;
+}
+
+const PolygonDataset& polygon_data() {
+  static const PolygonDataset data = [] {
+    PolygonDataSettings s;
+    s.trajectories = 8;
+    s.steps = 60;
+    s.seed = 7;
+    return generate_polygon_dataset(polygon_truth(), s);
+  }();
+  return data;
+}
+
+void BM_LearnPolygon(benchmark::State& state) {
+  const ParameterSet theta =
+      make_polygon_parameters(perturb_polygon_model(polygon_truth(), PolygonLearnFlags{}, 0.25, 3), PolygonLearnFlags{});
+  PolygonLossSettings ls;
+  ls.method = static_cast<PolygonMethod>(state.range(0));
+  ls.qp.kkt_backend = backend_arg(state.range(1));
+  PolygonObjective objective(polygon_data(), ls);
+  std::vector<Index> all, none;
+  split_samples(objective.num_samples(), 0.0, 1, all, none);
+  evaluate_mean(objective, theta, all, 1);  // warm starts, as in training
+  int failed = 0;
+  for (auto _ : state) {
+    const BatchResult r = evaluate_mean(objective, theta, all, 1);
+    failed += r.failed;
+    benchmark::DoNotOptimize(r.loss);
+  }
+  const double n = static_cast<double>(all.size()) * static_cast<double>(state.iterations());
+  state.counters["samples_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
+  state.counters["failed"] = failed;
+  state.SetLabel(std::string(to_string(ls.method)) + " " + to_string(ls.qp.kkt_backend));
+}
+BENCHMARK(BM_LearnPolygon)
+    ->ArgsProduct({{static_cast<int>(PolygonMethod::relaxed), static_cast<int>(PolygonMethod::convex)}, {0, 1}})
+    ->ArgNames({"method", "dense"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
