@@ -9,6 +9,9 @@
 //                             the learning losses' per-sample work. backend 0 = cholmod,
 //                             1 = dense. Counters: kkt_dim, iterations, factorizations,
 //                             kkt_form (1 full, 2 eliminated), ok (1 if solved).
+//   BM_QpSolveDenseData/n/b   the same work on a fully dense QP shaped like the contact and
+//                             relaxed-LCP subproblems (n variables ≥ 0, n dense rows Gx ≥ h,
+//                             no equalities: KKT 2n, or the n×n eliminated form).
 //   BM_LearnBlock/method/b    the block losses (as bench_learn_block.cpp: 400 transitions,
 //                             μ = 0.1, evaluated at μ = 0.3), 1 thread, relaxed (1) and
 //                             convex (2), backend b; counter samples_per_s.
@@ -28,6 +31,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -67,6 +73,55 @@ void BM_QpSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_QpSolve)
     ->ArgsProduct({{4, 6, 8, 12, 16, 24, 32, 40, 48, 56, 64, 80, 96, 128, 160, 192, 256, 292}, {0, 1}})
+    ->ArgNames({"n", "dense"})
+    ->Unit(benchmark::kMicrosecond);
+
+// A dense QP shaped like the contact and relaxed-LCP subproblems: min ½xᵀPx + qᵀx s.t.
+// Gx ≥ h (n rows), x ≥ 0, P = BᵀB/n + 0.1·I and G fully dense, h = Gx0 − |noise| for a
+// random x0 ≥ 0 (so feasible), q ~ N(0, 1); the KKT is [P Gᵀ; G −W]
+// (N = 2n) or, without equalities, the n×n eliminated form.
+QpProblem dense_qp(Index n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed + static_cast<std::uint64_t>(n));
+  std::normal_distribution<double> N(0.0, 1.0);
+  QpProblem p(n);
+  const DenseMatrix B = DenseMatrix::NullaryExpr(n, n, [&] { return N(rng); });
+  const DenseMatrix P = B.transpose() * B / n + 0.1 * DenseMatrix::Identity(n, n);
+  p.P = DenseMatrix(P.triangularView<Eigen::Upper>()).sparseView();
+  p.q = Vector::NullaryExpr(n, [&] { return N(rng); });
+  p.G = DenseMatrix(DenseMatrix::NullaryExpr(n, n, [&] { return N(rng); })).sparseView();
+  const Vector x0 = Vector::NullaryExpr(n, [&] { return std::abs(N(rng)); });  // feasible point
+  p.l = p.G * x0 - Vector::NullaryExpr(n, [&] { return std::abs(N(rng)); });
+  p.u = Vector::Constant(n, std::numeric_limits<double>::infinity());
+  p.xl = Vector::Zero(n);
+  return p;
+}
+
+void BM_QpSolveDenseData(benchmark::State& state) {
+  const Index n = static_cast<Index>(state.range(0));
+  QpSettings s;
+  s.kkt_backend = backend_arg(state.range(1));
+  const QpProblem p = dense_qp(n, kSeed);
+  const Vector dl_dx = Vector::Ones(n);
+  QpSolver solver(s);
+  solver.setup(p);
+  const QpInfo info = solver.solve().info;
+  bool ok = info.status == QpStatus::solved;
+  for (auto _ : state) {
+    solver.update(p);
+    const QpResult& r = solver.solve();
+    ok = ok && r.info.status == QpStatus::solved;
+    if (r.info.status != QpStatus::solved) continue;
+    const QpGradient g = solver.backward(dl_dx);
+    benchmark::DoNotOptimize(g.dq.data());
+  }
+  state.counters["kkt_dim"] = 2 * n;
+  state.counters["iterations"] = info.iterations;
+  state.counters["kkt_form"] = static_cast<double>(info.kkt_form);
+  state.counters["ok"] = ok ? 1 : 0;
+  state.SetLabel(std::string(to_string(info.kkt_backend)) + " N=" + std::to_string(2 * n));
+}
+BENCHMARK(BM_QpSolveDenseData)
+    ->ArgsProduct({{2, 4, 8, 12, 16, 24, 32, 48, 64, 96, 128}, {0, 1}})
     ->ArgNames({"n", "dense"})
     ->Unit(benchmark::kMicrosecond);
 
