@@ -74,8 +74,12 @@ void expect_same_solution(const QpProblem& p, bool unique) {
   if (unique) {
     const double scale = 1.0 + c.x.lpNorm<Eigen::Infinity>();
     EXPECT_LT((d.x - c.x).lpNorm<Eigen::Infinity>(), 1e-6 * scale);
-    if (c.y.size()) EXPECT_LT((d.y - c.y).lpNorm<Eigen::Infinity>(), 1e-5 * (1.0 + c.y.lpNorm<Eigen::Infinity>()));
-    if (c.z.size()) EXPECT_LT((d.z - c.z).lpNorm<Eigen::Infinity>(), 1e-5 * (1.0 + c.z.lpNorm<Eigen::Infinity>()));
+    if (c.y.size()) {
+      EXPECT_LT((d.y - c.y).lpNorm<Eigen::Infinity>(), 1e-5 * (1.0 + c.y.lpNorm<Eigen::Infinity>()));
+    }
+    if (c.z.size()) {
+      EXPECT_LT((d.z - c.z).lpNorm<Eigen::Infinity>(), 1e-5 * (1.0 + c.z.lpNorm<Eigen::Infinity>()));
+    }
   }
 }
 

@@ -17,6 +17,11 @@
 namespace lcprelax {
 namespace {
 
+// Largest island (contacts) whose failed convex solve is retried with the LCP model: Lemke
+// is milliseconds there, while on pile-sized islands (hundreds of contacts) it can take
+// seconds to minutes with its retries (contact_step.hpp), so those keep phase 1's answer.
+constexpr Index kConvexFallbackMaxContacts = 64;
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -189,6 +194,18 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         fallback.residual = std::max(fallback.residual, wk.solution.residual);
         wk.solution = std::move(fallback);
         wk.solution.ok = false;
+      }
+      if (!wk.solution.ok && !lcp && s.num_contacts() <= kConvexFallbackMaxContacts) {
+        // fallback: the Stewart–Trinkle LCP (Lemke, cold), kept only if Lemke solves it
+        ContactSolution fallback = solve_lcp_model(s, dt, settings_.lemke, {});
+        if (fallback.ok) {
+          fallback.message = wk.solution.message + "; lcp model used";
+          fallback.residual = std::max(fallback.residual, wk.solution.residual);
+          fallback.work += wk.solution.work;
+          fallback.z_basic.clear();
+          wk.solution = std::move(fallback);
+          wk.solution.ok = false;
+        }
       }
       // Last resort: a failed convex solve's frictionless phase-1 velocities, else v*.
       if (!wk.solution.ok && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;

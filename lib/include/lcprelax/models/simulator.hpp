@@ -50,8 +50,9 @@ struct StepStats {
   double max_residual = 0.0;   ///< largest contact-solve residual (contact_step.hpp)
   double max_penetration = 0.0;  ///< largest −φ ≥ 0 at the start of the step (m)
   /// Islands whose solve failed. Fallbacks: an lcp island takes the convex model's
-  /// answer, a convex island whose phase 2 failed its phase-1 (frictionless) answer; with
-  /// neither, v⁺ = v* (no contact impulse).
+  /// answer; a convex island of at most 64 contacts takes the LCP model's (Lemke) answer
+  /// if Lemke solves it, else (and on larger islands) its phase-1 (frictionless) answer;
+  /// with neither, v⁺ = v* (no contact impulse). A fallback still counts as a failure.
   int failed_islands = 0;
   std::string first_failure;   ///< message of the first failed solve
   int projected_islands = 0;     ///< islands whose positions the post-stabilization moved
