@@ -91,6 +91,7 @@ QpGradient QpSolver::backward(const Vector& dl_dx, const Vector& dl_dy, const Ve
   split_sides(m.it.b_lower, db_signed, Db_now, dbl);
 
   QpGradient g;
+  g.adjoint_residual = m.kkt.last_relative_residual();
   g.dq = f.c * f.Dx.cwiseProduct(dx);
   g.dP = p.P;
   for (Index j = 0; j < n; ++j)

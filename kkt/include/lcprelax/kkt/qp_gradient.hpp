@@ -22,6 +22,14 @@ struct QpGradient {
   Vector du;
   Vector dxl;
   Vector dxu;
+  /// Relative residual ‖K₀d − r‖∞ / (1 + ‖r‖∞) of the adjoint KKT solve after iterative
+  /// refinement against the unregularized KKT matrix K₀ (scaled problem). At roundoff level
+  /// (≲ 1e-10) when K₀ is well conditioned at the final iterate. A large value (say > 1e-6)
+  /// means K₀ is singular or nearly so there: typically the optimum is not unique (e.g. an LP
+  /// face; QAFIRO: 0.5) or the active set is degenerate, ∂ℓ/∂(data) does not exist, and the
+  /// numbers above are set by the regularization (they scale like 1/ρ). Check it before
+  /// trusting a gradient; backward() does not throw on it.
+  double adjoint_residual = 0.0;
 };
 
 }  // namespace lcprelax
