@@ -6,6 +6,14 @@
 // - --learn selects the parameter kinds (mu,ground: 3 learned names);
 // - bad input exits 2 with a message on stderr naming the option and nothing on stdout:
 //   unknown method, unknown --learn kind, negative epochs, a plot file that is not .png/.svg.
+// - the command a user runs first, `learn polygon --method relaxed --json` with every other
+//   option at its default (data, seed, perturbation, epochs, learning rate), learns: every
+//   learned parameter's relative error (polygon_relative_error) ends ≤ 5% and at most 1/5
+//   of its initial value (the --epochs 0 run's), the training loss falls 20-fold, no sample
+//   fails. Measured (seed 1, 400 samples, 300 epochs): μ 0.7%, mass 2.8%, inertia 1.3%,
+//   vertices ≤ 0.5% of the radius from 25% / 12.5%; loss 0.47 → 0.0042; ≈ 20 s on 2 busy
+//   cores. Before candidate_margin and the present defaults the same command ended with
+//   inertia 47% and vertex2.y 32% off (loss 0.54 → 0.45).
 #include "cli_support.hpp"
 
 #include <gtest/gtest.h>
@@ -49,9 +57,28 @@ TEST(CliLearnPolygonOptions, LearnSelectsKinds) {
   EXPECT_TRUE(j["learned"].contains("ground_angle"));
 }
 
+TEST(CliLearnPolygonDefaults, DefaultRelaxedRunLearnsEveryParameter) {
+  const CliRun r0 = run_cli("learn polygon --method relaxed --epochs 0 --json");
+  ASSERT_EQ(r0.exit_code, 0) << r0.err;
+  const auto j0 = nlohmann::json::parse(r0.out);
+  const CliRun r = run_cli("learn polygon --method relaxed --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["failed"], 0);
+  ASSERT_EQ(j["relative_error"].size(), 11u);  // mu, mass, inertia, 4 vertices × 2
+  for (const auto& [name, error] : j["relative_error"].items()) {
+    const double e = error.get<double>(), e0 = j0["relative_error"][name].get<double>();
+    EXPECT_GT(e0, 0.1) << name;  // the default perturbation: 25% (μ, mass, inertia), 12.5% (vertices)
+    EXPECT_LE(e, 0.05) << name << ": initial " << e0 << ", learned " << j["learned"][name];
+    EXPECT_LE(e, e0 / 5) << name << ": initial " << e0;
+  }
+  EXPECT_LT(j["final_loss"].get<double>(), j0["final_loss"].get<double>() / 20);
+}
+
 TEST(CliLearnPolygonOptions, BadInputExitsTwo) {
   for (const std::string& args : {std::string("--method soft"), std::string("--learn mu,friction"),
-                                  std::string("--epochs -1"), std::string("--plot out.txt")}) {
+                                  std::string("--epochs -1"), std::string("--plot out.txt"),
+                                  std::string("--lr-decay -1")}) {
     const CliRun r = run_cli("learn polygon --samples 20 --json " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_TRUE(r.out.empty()) << args;

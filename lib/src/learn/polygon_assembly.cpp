@@ -37,7 +37,7 @@ double polygon_speculative_margin(const PolygonModel& model, const PolygonTransi
 }
 
 std::vector<int> polygon_active_vertices(const PolygonModel& model, const PolygonTransition& sample,
-                                         const PolygonDataset& data) {
+                                         const PolygonDataset& data, double extra_margin) {
   RigidBody body;
   body.shape = model.shape;
   body.pose = sample.q;
@@ -56,6 +56,13 @@ std::vector<int> polygon_active_vertices(const PolygonModel& model, const Polygo
       if (distance < best_distance) best = i, best_distance = distance;
     }
     if (std::find(vertices.begin(), vertices.end(), best) == vertices.end()) vertices.push_back(best);
+  }
+  if (extra_margin > 0.0) {
+    const double limit = polygon_speculative_margin(model, sample, data) + extra_margin;
+    for (int i = 0; i < shape.count; ++i) {
+      const double g = ground.normal.dot(shape.vertices[static_cast<std::size_t>(i)]) - ground.offset;
+      if (g <= limit && std::find(vertices.begin(), vertices.end(), i) == vertices.end()) vertices.push_back(i);
+    }
   }
   std::sort(vertices.begin(), vertices.end());
   return vertices;

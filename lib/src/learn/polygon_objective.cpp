@@ -37,6 +37,7 @@ std::string PolygonLossSettings::validation_error() const {
   if (!e.empty()) return "relaxed: " + e;
   if (!(std::isfinite(convex_rho) && convex_rho >= 0)) return "convex_rho: must be finite and >= 0";
   if (!(std::isfinite(convex_deviation) && convex_deviation >= 0)) return "convex_deviation: must be finite and >= 0";
+  if (!(std::isfinite(candidate_margin) && candidate_margin >= 0)) return "candidate_margin: must be finite and >= 0";
   return {};
 }
 
@@ -72,7 +73,7 @@ SampleResult PolygonObjective::evaluate(Index sample, const ParameterSet& theta,
   const PolygonTransition& s = data_.transitions[static_cast<std::size_t>(sample)];
   const auto t0 = std::chrono::steady_clock::now();
   const PolygonModel model = polygon_model(theta);
-  const std::vector<int> vertices = polygon_active_vertices(model, s, data_);
+  const std::vector<int> vertices = polygon_active_vertices(model, s, data_, settings_.candidate_margin);
   assemble_polygon(model, vertices, s, data_, ws.assembly);
   ws.times.assembly += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   PolygonWarmStart& warm = warm_[static_cast<std::size_t>(sample)];

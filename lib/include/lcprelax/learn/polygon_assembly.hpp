@@ -8,8 +8,10 @@
 // phase (contact/narrow_phase.hpp: the at most two deepest vertices with gap ≤ margin) at
 // the sample's pre-state and the CURRENT θ, with the simulator's speculative margin
 //     margin + 2Δt·max over {v, v*} of (|v_xy| + |ω|·radius)      (models/simulator.hpp).
-// Each contact is identified by its vertex index; the set is then held fixed while
-// differentiating (a vertex entering or leaving the set is a kink the derivative ignores).
+// For learning, further candidate vertices within an extra margin can be added
+// (polygon_active_vertices). Each contact is identified by its vertex index; the set is
+// then held fixed while differentiating (a vertex entering or leaving the set is a kink
+// the derivative ignores).
 //
 // Per contact with body-frame vertex b (vertex i), pose (x, y, θ), R = R(θ), ground
 // normal n = (−sin α, cos α), tangent t = (−n_y, n_x) (contact_system.hpp), offset
@@ -63,9 +65,13 @@ struct PolygonAssembly {
 double polygon_speculative_margin(const PolygonModel& model, const PolygonTransition& sample, const PolygonDataset& data);
 
 /// Vertex indices of the contacts the narrow phase finds at the sample's pre-state for
-/// `model` (increasing; at most two).
+/// `model` (increasing; at most two), plus, when extra_margin > 0 (m), every other vertex
+/// whose gap is ≤ speculative margin + extra_margin (learning candidates: with a wrong
+/// geometry the vertex that touched in the data can lie beyond the simulator's margin; as a
+/// contact it can still receive an impulse, and a gradient, in the relaxed loss, while
+/// left out its sample has no contact and no gradient towards the ground).
 std::vector<int> polygon_active_vertices(const PolygonModel& model, const PolygonTransition& sample,
-                                         const PolygonDataset& data);
+                                         const PolygonDataset& data, double extra_margin = 0.0);
 
 /// Assembles value and derivatives for the given active vertices (not re-detected).
 void assemble_polygon(const PolygonModel& model, const std::vector<int>& vertices, const PolygonTransition& sample,

@@ -5,7 +5,7 @@
 // dataset's polygon (polygon_params.hpp).
 //
 // evaluate(i, θ, thread): active set at the sample's pre-state for the current θ
-// (polygon_assembly.hpp), assembly with tangents, the method's loss. Per-thread
+// (polygon_assembly.hpp, widened by PolygonLossSettings::candidate_margin), assembly with tangents, the method's loss. Per-thread
 // workspaces (a RelaxedLcpSolver each, created in prepare()) and per-sample warm starts
 // from the previous evaluation of the same sample (a sample is never evaluated twice at
 // once, trainer.hpp). Warm starts depend only on the sample's own history, so the result
