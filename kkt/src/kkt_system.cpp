@@ -196,12 +196,12 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
 
 void KktSystem::apply_k0(const StandardForm& f, const Vector& dx, const Vector& dy, const Vector& dz, Vector& ox,
                          Vector& oy, Vector& oz) const {
-  ox = f.P.selfadjointView<Eigen::Upper>() * dx;
+  ox.noalias() = f.P.selfadjointView<Eigen::Upper>() * dx;
   ox.array() += Db_.array() * dx.array();
   if (f.me > 0) ox.noalias() += f.Et * dy;
   if (f.mg > 0) ox.noalias() += f.Gt * dz;
-  oy = f.E * dx;
-  oz = f.G * dx;
+  oy.noalias() = f.E * dx;
+  oz.noalias() = f.G * dx;
   oz.array() -= dz.array() / Dg_.array();
 }
 
@@ -216,15 +216,15 @@ void KktSystem::approximate_solve(const StandardForm& f, const Vector& rx, const
     dy = work_.segment(f.n, f.me);
     dz = work_.tail(f.mg);
   } else {
-    const Vector wr = (1.0 / Dg_.array() + delta_rows_).matrix();
-    const Vector rzw = (rz.array() / wr.array()).matrix();
+    wr_ = (1.0 / Dg_.array() + delta_rows_).matrix();
+    rzw_ = (rz.array() / wr_.array()).matrix();
     work_ = rx;
-    if (f.mg > 0) work_.noalias() += f.Gt * rzw;
+    if (f.mg > 0) work_.noalias() += f.Gt * rzw_;
     factor_->solve(work_);
     dx = work_;
     dy.resize(0);
-    dz = f.G * dx;
-    dz.array() = (dz.array() - rz.array()) / wr.array();
+    dz.noalias() = f.G * dx;
+    dz.array() = (dz.array() - rz.array()) / wr_.array();
   }
 }
 
@@ -235,7 +235,7 @@ int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, 
   if (max_refinement <= 0) return 0;
   const double rhs_norm = std::max({rx.lpNorm<Eigen::Infinity>(), f.me ? ry.lpNorm<Eigen::Infinity>() : 0.0,
                                     f.mg ? rz.lpNorm<Eigen::Infinity>() : 0.0});
-  Vector ox, oy, oz, cx, cy, cz;
+  Vector &ox = ox_, &oy = oy_, &oz = oz_, &cx = cx_, &cy = cy_, &cz = cz_;
   auto residual = [&](const Vector& ax, const Vector& ay, const Vector& az) {
     apply_k0(f, ax, ay, az, ox, oy, oz);
     ox = rx - ox;
@@ -251,7 +251,10 @@ int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, 
   for (; steps < max_refinement; ++steps) {
     if (!(res > 1e-15 * (1.0 + rhs_norm))) break;
     approximate_solve(f, ox, oy, oz, cx, cy, cz);
-    Vector nx = dx + cx, ny = dy + cy, nz = dz + cz;
+    Vector &nx = nx_, &ny = ny_, &nz = nz_;
+    nx = dx + cx;
+    ny = dy + cy;
+    nz = dz + cz;
     const double nres = residual(nx, ny, nz);
     if (!(nres < res)) break;
     dx.swap(nx);

@@ -74,6 +74,8 @@ class KktSystem {
   double rho_ = 0.0, delta_ = 0.0, delta_rows_ = 0.0;
   mutable double last_relative_residual_ = 0.0;
   mutable Vector work_;                  // scratch for solves
+  mutable Vector ox_, oy_, oz_, cx_, cy_, cz_, nx_, ny_, nz_;  // refinement scratch (no allocation per solve)
+  mutable Vector wr_, rzw_;              // eliminated form: row weights and weighted rhs
 };
 
 }  // namespace lcprelax::detail

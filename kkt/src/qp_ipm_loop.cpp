@@ -76,16 +76,14 @@ void QpSolver::Impl::run(QpInfo& info) {
       return;
     }
     if (have_step && info.iterations >= kFirstInfeasibilityCheck) {
-      QpResult cert = result;
-      if (detail::primal_infeasibility_certificate(f, problem, it.y, it, false, settings.eps_infeasible, cert) ||
-          detail::primal_infeasibility_certificate(f, problem, last_dy, it, true, settings.eps_infeasible, cert)) {
-        result = cert;
+      // The certificate functions write into result only when they return true.
+      if (detail::primal_infeasibility_certificate(f, problem, it.y, it, false, settings.eps_infeasible, result) ||
+          detail::primal_infeasibility_certificate(f, problem, last_dy, it, true, settings.eps_infeasible, result)) {
         info.status = QpStatus::primal_infeasible;
         return;
       }
-      if (detail::dual_infeasibility_certificate(f, last_dx, settings.eps_infeasible, cert) ||
-          detail::dual_infeasibility_certificate(f, it.x, settings.eps_infeasible, cert)) {
-        result = cert;
+      if (detail::dual_infeasibility_certificate(f, last_dx, settings.eps_infeasible, result) ||
+          detail::dual_infeasibility_certificate(f, it.x, settings.eps_infeasible, result)) {
         info.status = QpStatus::dual_infeasible;
         return;
       }

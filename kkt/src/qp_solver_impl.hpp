@@ -21,7 +21,8 @@ void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& 
 Residuals compute_residuals(const QpProblem& p, const QpResult& r);
 
 /// Infeasibility certificates on a candidate direction (scaled space); on success the
-/// certificate is written into r (unscaled, ∞-norm 1) and true is returned.
+/// certificate is written into r (unscaled, ∞-norm 1) and true is returned; otherwise r
+/// is left untouched.
 bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p, const Vector& y, const Iterate& it,
                                       bool use_steps, double eps, QpResult& r);
 bool dual_infeasibility_certificate(const StandardForm& f, const Vector& d, double eps, QpResult& r);
