@@ -9,6 +9,8 @@
 //   convex:  the 1-variable QP in closed form (clamp) with its one-sided derivative.
 // Data: 400 transitions, μ = 0.1, m = m·g = 1, evaluated at μ = 0.3.
 //   build-block/bench/bench_learn_block --benchmark_min_time=0.5
+#include "learn_problems.hpp"
+
 #include <lcprelax/learn/block_losses.hpp>
 #include <lcprelax/models/block1d.hpp>
 
@@ -23,12 +25,7 @@ namespace lcprelax::learn {
 namespace {
 
 const BlockDataset& data() {
-  static const BlockDataset d = [] {
-    BlockDataSettings s;
-    s.truth = Block1d{1.0, 1.0, 0.1};
-    s.samples = 400;
-    return generate_block_dataset(s);
-  }();
+  static const BlockDataset d = bench::block_dataset(400);
   return d;
 }
 

@@ -8,6 +8,8 @@
 //
 // Dataset: the CLI's ground truth (apps/cmd_learn_polygon.cpp), 8 throws of 60 steps,
 // contact steps only (315 samples), evaluated at 25%-perturbed parameters.
+#include "learn_problems.hpp"
+
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_objective.hpp>
 
@@ -19,20 +21,7 @@ using namespace lcprelax;
 using namespace lcprelax::learn;
 
 const PolygonDataset& dataset() {
-  static const PolygonDataset data = [] {
-    PolygonModel m;
-    Polygon p;
-    p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-    m.shape = recentred(p);
-    m.mu = 0.4;
-    m.mass = 1.5;
-    m.inertia = 0.06;
-    PolygonDataSettings s;
-    s.trajectories = 8;
-    s.steps = 60;
-    s.seed = 7;
-    return generate_polygon_dataset(m, s);
-  }();
+  static const PolygonDataset data = bench::polygon_dataset(8, 7);
   return data;
 }
 
@@ -40,18 +29,7 @@ void BM_PolygonLoss(benchmark::State& state) {
   const PolygonMethod method = static_cast<PolygonMethod>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const PolygonDataset& data = dataset();
-  PolygonModel start;
-  {
-    PolygonModel truth;
-    Polygon p;
-    p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-    truth.shape = recentred(p);
-    truth.mu = 0.4;
-    truth.mass = 1.5;
-    truth.inertia = 0.06;
-    start = perturb_polygon_model(truth, PolygonLearnFlags{}, 0.25, 3);
-  }
-  const ParameterSet theta = make_polygon_parameters(start, PolygonLearnFlags{});
+  const ParameterSet theta = bench::polygon_start(0.25, 3);
   PolygonLossSettings ls;
   ls.method = method;
   PolygonObjective objective(data, ls);

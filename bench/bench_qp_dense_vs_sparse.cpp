@@ -21,6 +21,7 @@
 // Compare rows with the same arguments but backend 0 and 1 from ONE run (shared machine).
 //
 //   build-dense/bench/bench_qp_dense_vs_sparse --benchmark_min_time=0.3
+#include "learn_problems.hpp"
 #include "random_qp.hpp"
 
 #include <lcprelax/contact/polygon.hpp>
@@ -126,12 +127,7 @@ BENCHMARK(BM_QpSolveDenseData)
     ->Unit(benchmark::kMicrosecond);
 
 const BlockDataset& block_data() {
-  static const BlockDataset d = [] {
-    BlockDataSettings s;
-    s.truth = Block1d{1.0, 1.0, 0.1};
-    s.samples = 400;
-    return generate_block_dataset(s);
-  }();
+  static const BlockDataset d = bench::block_dataset(400);
   return d;
 }
 
@@ -161,31 +157,13 @@ BENCHMARK(BM_LearnBlock)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-PolygonModel polygon_truth() {
-  PolygonModel truth;
-  Polygon p;
-  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-  truth.shape = recentred(p);
-  truth.mu = 0.4;
-  truth.mass = 1.5;
-  truth.inertia = 0.06;
-  return truth;
-}
-
 const PolygonDataset& polygon_data() {
-  static const PolygonDataset data = [] {
-    PolygonDataSettings s;
-    s.trajectories = 8;
-    s.steps = 60;
-    s.seed = 7;
-    return generate_polygon_dataset(polygon_truth(), s);
-  }();
+  static const PolygonDataset data = bench::polygon_dataset(8, 7);
   return data;
 }
 
 void BM_LearnPolygon(benchmark::State& state) {
-  const ParameterSet theta =
-      make_polygon_parameters(perturb_polygon_model(polygon_truth(), PolygonLearnFlags{}, 0.25, 3), PolygonLearnFlags{});
+  const ParameterSet theta = bench::polygon_start(0.25, 3);
   PolygonLossSettings ls;
   ls.method = static_cast<PolygonMethod>(state.range(0));
   ls.qp.kkt_backend = backend_arg(state.range(1));
