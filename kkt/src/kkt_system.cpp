@@ -179,12 +179,11 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
     }
   }
   sparse::FactorResult r = factor_->factorize(K_);
-  const auto* dense = backend_ == KktBackend::dense ? static_cast<const sparse::DenseLdlt*>(factor_.get()) : nullptr;
-  if (r.ok() && (form_ == KktForm::full || dense)) {  // dense eliminated form: n positive = SPD
-    const auto* mumps = dynamic_cast<const sparse::PetscMumpsLdlt*>(factor_.get());
-    const sparse::Inertia inertia =
-        dense ? dense->inertia()
-        : mumps ? mumps->inertia() : static_cast<const sparse::CholmodLdlt&>(*factor_).inertia();
+  // Every LDLᵀ reports its inertia: the full form must have n positive pivots (the primal
+  // block) and the rest negative; the dense eliminated form (size n) must be SPD, i.e. n
+  // positive. CHOLMOD's LLᵀ of the eliminated form fails by itself when it is not SPD.
+  if (r.ok() && factor_->reports_inertia()) {
+    const sparse::Inertia inertia = factor_->inertia();
     if (inertia.positive != f.n) {
       r.status = sparse::FactorStatus::zero_pivot;
       r.message = "KKT factor has " + std::to_string(inertia.positive) + " positive pivots, expected " +

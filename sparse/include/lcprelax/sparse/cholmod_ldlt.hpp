@@ -14,12 +14,6 @@
 
 namespace lcprelax::sparse {
 
-struct Inertia {
-  Index positive = 0;
-  Index negative = 0;
-  Index zero = 0;
-};
-
 class CholmodLdlt final : public Factorization {
  public:
   /// dynamic_regularization: CHOLMOD dbound (0 disables; see header comment).
@@ -38,7 +32,8 @@ class CholmodLdlt final : public Factorization {
   const char* name() const override { return "cholmod_ldlt"; }
 
   /// Signs of D in the last numeric factorization.
-  Inertia inertia() const;
+  bool reports_inertia() const override { return true; }
+  Inertia inertia() const override;
   /// A copy that shares nothing but holds the same symbolic analysis (ordering,
   /// elimination tree), so that another thread can factorize matrices of the same
   /// pattern without analysing again. Valid after analyze().

@@ -34,7 +34,6 @@
 // pivots mean K was not quasi-definite, e.g. a nonconvex P: raise the regularization).
 // Meant for n up to a few hundred (kkt: QpSettings::dense_max_kkt); n above
 // kMaxDimension is refused with out_of_memory at analyze().
-#include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/factorization.hpp>
 
 #include <vector>
@@ -58,7 +57,8 @@ class DenseLdlt final : public Factorization {
   const char* name() const override { return "dense_ldlt"; }
 
   /// Signs of D̂ in the last successful numeric factorization.
-  Inertia inertia() const { return inertia_; }
+  bool reports_inertia() const override { return true; }
+  Inertia inertia() const override { return inertia_; }
   /// Pivots replaced by ±τ in the last numeric factorization.
   Index regularized_pivots() const { return regularized_; }
 

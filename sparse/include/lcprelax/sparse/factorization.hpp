@@ -50,6 +50,13 @@ struct FactorResult {
   bool ok() const { return status == FactorStatus::ok; }
 };
 
+/// Signs of the pivots D of an LDLᵀ factorization.
+struct Inertia {
+  Index positive = 0;
+  Index negative = 0;
+  Index zero = 0;
+};
+
 class Factorization {
  public:
   virtual ~Factorization() = default;
@@ -66,6 +73,11 @@ class Factorization {
   /// Dimension of the analysed matrix (0 before analyze()).
   virtual Index rows() const = 0;
   virtual const char* name() const = 0;
+  /// Whether inertia() is meaningful: the LDLᵀ factorizations report the signs of D of the
+  /// last numeric factorization (a caller verifies a quasi-definite matrix with it); LLᵀ
+  /// and LU do not (LLᵀ fails on a matrix that is not positive definite anyway).
+  virtual bool reports_inertia() const { return false; }
+  virtual Inertia inertia() const { return {}; }
   /// Numeric factorizations performed since construction (so tests can count reuse).
   int numeric_factorizations() const { return numeric_factorizations_; }
 

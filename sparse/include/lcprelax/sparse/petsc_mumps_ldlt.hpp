@@ -36,7 +36,6 @@
 // Not thread-safe: one PetscMumpsLdlt per process at a time in a parallel region is not
 // supported by PETSc; lcprelax's batch solvers use it from one thread.
 // Built without PETSc, analyze() returns invalid_input with a message saying so.
-#include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/factorization.hpp>
 
 #include <memory>
@@ -58,7 +57,8 @@ class PetscMumpsLdlt final : public Factorization {
   const char* name() const override { return distributed_ ? "mumps_ldlt_distributed" : "mumps_ldlt"; }
 
   /// Signs of D in the last numeric factorization (from MUMPS).
-  Inertia inertia() const;
+  bool reports_inertia() const override { return true; }
+  Inertia inertia() const override;
   bool distributed() const { return distributed_; }
 
  private:
