@@ -5,12 +5,23 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace lcprelax::bench {
 
 using CsvRow = std::map<std::string, std::string>;
+
+/// The non-empty comma-separated items of s (option lists, unquoted CSV lines).
+inline std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
 
 /// The rows of `path` (empty when the file is missing or has no header). Lines before the
 /// header that Google Benchmark may print are not expected: the header is the first line.

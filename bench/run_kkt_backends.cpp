@@ -21,6 +21,7 @@
 // (factor_s / factorizations), over_cholmod (total_s / CHOLMOD's total_s of the same
 // problem in the same CSV file, if there). Exit 0 (whatever the solves' outcomes); 2 on
 // bad arguments or an unreadable problem.
+#include "csv_table.hpp"
 #include "pile_timing.hpp"
 #include "random_qp.hpp"
 
@@ -100,15 +101,6 @@ Row run(const Problem& p, KktBackend backend, int reps, double time_limit) {
   return r;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,7 +127,7 @@ int main(int argc, char** argv) {
   std::vector<KktBackend> chosen;
   std::vector<Problem> set;
   try {
-    for (const std::string& b : split(backends)) {
+    for (const std::string& b : bench::split_list(backends)) {
       const KktBackend k = parse_backend(b);
       if (k != KktBackend::cholmod && !sparse::petsc_available()) {
         if (rank == 0) std::fprintf(stderr, "built without PETSc: backend %s skipped\n", b.c_str());
@@ -144,7 +136,7 @@ int main(int argc, char** argv) {
       chosen.push_back(k);
     }
     if (reps < 1) throw std::invalid_argument("--reps must be >= 1");
-    for (const std::string& name : split(problems))
+    for (const std::string& name : bench::split_list(problems))
       set.push_back({name, io::read_qps(data + "/" + name + ".qps").problem});
     if (random_n > 0) set.push_back({"random_" + std::to_string(random_n), bench::make_random_qp(random_n, 2024).problem});
   } catch (const std::exception& e) {
@@ -175,7 +167,7 @@ int main(int argc, char** argv) {
       std::string line;
       std::getline(in, line);
       while (std::getline(in, line)) {
-        const std::vector<std::string> f = split(line);
+        const std::vector<std::string> f = bench::split_list(line);
         if (f.size() > 9 && f[3] == "cholmod") cholmod[f[0]] = std::stod(f[9]);
       }
     }

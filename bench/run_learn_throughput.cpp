@@ -25,6 +25,7 @@
 // same CSV file; else empty). Rank 0 prints and writes; --append adds rows to an existing
 // CSV without a header. Exit 0; 2 on bad arguments.
 #include "learn_problems.hpp"
+#include "csv_table.hpp"
 #include "pile_timing.hpp"
 
 #include <lcprelax/sparse/mpi_session.hpp>
@@ -83,15 +84,6 @@ Measurement time_passes(learn::Objective& objective, const learn::ParameterSet& 
   return m;
 }
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 // samples/s of the 1-rank 1-thread rows already in the CSV (for --append runs).
 std::map<std::string, double> read_baselines(const std::string& csv) {
   std::map<std::string, double> base;
@@ -99,7 +91,7 @@ std::map<std::string, double> read_baselines(const std::string& csv) {
   std::string line;
   std::getline(in, line);
   while (std::getline(in, line)) {
-    const std::vector<std::string> f = split(line);
+    const std::vector<std::string> f = bench::split_list(line);
     if (f.size() >= 8 && f[2] == "1" && f[3] == "1") base[f[0] + "/" + f[1]] = std::stod(f[7]);
   }
   return base;
@@ -147,8 +139,8 @@ int main(int argc, char** argv) {
   if (rank == 0)
     std::printf("%-8s %-8s %5s %7s %7s %6s %12s %12s %7s  %s\n", "problem", "method", "ranks", "threads", "samples",
                 "passes", "ms/pass", "samples/s", "failed", "loss");
-  for (const std::string& problem : split(problems)) {
-    for (const std::string& method : split(methods)) {
+  for (const std::string& problem : bench::split_list(problems)) {
+    for (const std::string& method : bench::split_list(methods)) {
       for (int threads : thread_counts) {
         Out o{problem, method, threads, 0, {}};
         if (problem == "block") {
