@@ -91,10 +91,21 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm = {});
 
+/// How the convex model's QPs are posed (lib/src/models/convex_model_qp.hpp): `dual` in
+/// the impulses λ with the Delassus matrix W = J M⁻¹ Jᵀ; `lifted` in (Δv, λ) with the
+/// equality M Δv = Jᵀ λ, whose KKT matrix holds only M and the Jacobians (less fill on
+/// large islands); `automatic`: lifted from kLiftedMinContacts contacts on. Both give the
+/// same v⁺ to the QP tolerance.
+enum class ConvexFormulation { automatic, dual, lifted };
+
+/// Smallest island (contacts) that ConvexFormulation::automatic solves lifted; measured
+/// crossover between 14 (dual faster) and 30 contacts (lifted faster), convex_model_qp.hpp.
+constexpr Index kLiftedMinContacts = 24;
+
 /// Solves the convex two-phase model. When phase 1 succeeds but phase 2 fails (measured:
 /// a plank 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
 /// the result has ok = false and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
-                                   double rho = 1e-3);
+                                   double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic);
 
 }  // namespace lcprelax

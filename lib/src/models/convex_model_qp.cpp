@@ -1,0 +1,139 @@
+// The convex model's phase QPs in the dual and the lifted formulation (convex_model_qp.hpp).
+#include "convex_model_qp.hpp"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace lcprelax::detail {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+SparseMatrix upper(const SparseMatrix& A) {
+  SparseMatrix U = A.triangularView<Eigen::Upper>();
+  U.makeCompressed();
+  return U;
+}
+
+SparseMatrix from_triplets(Index rows, Index cols, const std::vector<Triplet>& t) {
+  SparseMatrix A(rows, cols);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+// Appends the entries of `A` at (row_offset + i, col_offset + j), each times `scale`;
+// `transpose` appends Aᵀ instead.
+void append(std::vector<Triplet>& t, const SparseMatrix& A, Index row_offset, Index col_offset, double scale,
+            bool transpose = false) {
+  for (Index j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+      const Index r = transpose ? j : it.row(), c = transpose ? it.row() : j;
+      t.emplace_back(row_offset + r, col_offset + c, scale * it.value());
+    }
+}
+
+// Lifted equality M w − Jnᵀ λn (− Jtᵀ λt when `friction`) = 0, with w first in x.
+void lifted_equality(const ContactSystem& s, bool friction, QpProblem& p) {
+  const Index nv = s.num_dofs(), nc = s.num_contacts();
+  std::vector<Triplet> t;
+  for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+  append(t, s.Jn, 0, nv, -1.0, /*transpose=*/true);
+  if (friction) append(t, s.Jt, 0, nv + nc, -1.0, /*transpose=*/true);
+  p.A = from_triplets(nv, p.num_variables(), t);
+  p.b = Vector::Zero(nv);
+}
+
+// Rows nc.. of phase 2: eᵀλn ≤ κ (row nc), then λt − μλn ≤ 0 and λt + μλn ≥ 0 per
+// friction row; λn starts at column `ln`, λt at `lt`.
+void friction_rows(const ContactSystem& s, Index ln, Index lt, std::vector<Triplet>& t) {
+  const Index nc = s.num_contacts(), nf = s.num_friction();
+  for (Index i = 0; i < nc; ++i) t.emplace_back(nc, ln + i, 1.0);
+  for (Index f = 0; f < nf; ++f) {
+    t.emplace_back(nc + 1 + 2 * f, lt + f, 1.0);
+    t.emplace_back(nc + 1 + 2 * f, ln + s.friction_rows[f], -s.mu(f));
+    t.emplace_back(nc + 2 + 2 * f, lt + f, 1.0);
+    t.emplace_back(nc + 2 + 2 * f, ln + s.friction_rows[f], s.mu(f));
+  }
+}
+
+}  // namespace
+
+ConvexFormulation resolve_convex_formulation(ConvexFormulation requested, const ContactSystem& s) {
+  if (requested != ConvexFormulation::automatic) return requested;
+  return s.num_contacts() >= kLiftedMinContacts ? ConvexFormulation::lifted : ConvexFormulation::dual;
+}
+
+ConvexModelData::ConvexModelData(const ContactSystem& system, double dt, ConvexFormulation requested)
+    : s(system), form(resolve_convex_formulation(requested, system)) {
+  bn = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
+  const Index nc = s.num_contacts();
+  w_nn = Vector::Zero(nc);
+  for (Index j = 0; j < s.Jn.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) w_nn(it.row()) += it.value() * it.value() * s.minv(j);
+  if (form == ConvexFormulation::dual) W = delassus(s);
+}
+
+ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d) {
+  const ContactSystem& s = d.s;
+  const Index nc = s.num_contacts(), nv = s.num_dofs();
+  ConvexPhaseQp out;
+  if (d.form == ConvexFormulation::dual) {
+    out.problem = QpProblem(nc);
+    out.problem.P = upper(d.W.topLeftCorner(nc, nc));
+  } else {  // x = (w, λn): ½ wᵀ M w + bnᵀ λn, M w = Jnᵀ λn
+    out.problem = QpProblem(nv + nc);
+    std::vector<Triplet> t;
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+    out.problem.P = from_triplets(nv + nc, nv + nc, t);
+    lifted_equality(s, /*friction=*/false, out.problem);
+    out.lambda_offset = nv;
+  }
+  QpProblem& p = out.problem;
+  p.q.tail(nc) = d.bn;
+  p.xl.tail(nc).setZero();
+  return out;
+}
+
+ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, double rho) {
+  const ContactSystem& s = d.s;
+  const Index nc = s.num_contacts(), nf = s.num_friction(), nv = s.num_dofs();
+  const bool lifted = d.form == ConvexFormulation::lifted;
+  const Index ln = lifted ? nv : 0, lt = ln + nc, n = lt + nf, m = nc + 1 + 2 * nf;
+  ConvexPhaseQp out;
+  out.problem = QpProblem(n);
+  out.lambda_offset = ln;
+  QpProblem& p = out.problem;
+  std::vector<Triplet> g;  // rows 0..nc: Jn v⁺ + max(φ,0)/Δt ≥ 0, i.e. (Jn w or Wn λ) ≥ −bn
+  if (lifted) {
+    std::vector<Triplet> t;
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i));
+    p.P = from_triplets(n, n, t);
+    lifted_equality(s, /*friction=*/true, p);
+    append(g, s.Jn, 0, 0, 1.0);
+  } else {
+    SparseMatrix P = d.W;
+    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i);
+    p.P = upper(P);
+    for (Index c = 0; c < n; ++c)
+      for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
+        if (it.row() < nc) g.emplace_back(it.row(), c, it.value());
+  }
+  p.q.segment(ln, nc) = s.Jn * s.v_star;
+  p.q.segment(lt, nf) = s.Jt * s.v_star;
+  friction_rows(s, ln, lt, g);
+  p.G = from_triplets(m, n, g);
+  p.l = Vector::Constant(m, -kInf);
+  p.u = Vector::Constant(m, kInf);
+  p.l.head(nc) = -d.bn;
+  for (Index f = 0; f < nf; ++f) {
+    p.u(nc + 1 + 2 * f) = 0.0;
+    p.l(nc + 2 + 2 * f) = 0.0;
+  }
+  p.xl.segment(ln, nc).setZero();
+  return out;
+}
+
+}  // namespace lcprelax::detail

@@ -1,0 +1,55 @@
+#pragma once
+// The two interior-point QPs of the convex contact model (contact_step.hpp), built in one
+// of two equivalent formulations (ConvexFormulation):
+//
+// dual: the unknowns are the impulses only, x = (λn, λt), and the Hessian is the Delassus
+//   matrix W = J M⁻¹ Jᵀ. Smallest problem, but W couples every pair of contacts that share
+//   a body (a clique per body), and phase 2's non-penetration rows repeat W's normal rows.
+//
+// lifted: the velocity change w = Δv = M⁻¹ Jᵀ λ is an unknown too, x = (w, λn, λt), tied
+//   to the impulses by the equality M w − Jnᵀ λn − Jtᵀ λt = 0. Then ½ λᵀ W λ = ½ wᵀ M w
+//   and the non-penetration rows W(0:nc, :) λ + b ≥ 0 become Jn w + b ≥ 0, so the KKT
+//   matrix holds only M (diagonal) and the Jacobians (6 entries per contact row in 2-D):
+//   its graph is the body–contact incidence graph, and a fill-reducing order eliminates
+//   contacts before bodies. This is the classical primal–dual form of the contact problem
+//   (e.g. Anitescu & Potra 1997; Stewart & Trinkle 1996 keep v and λ as unknowns alike).
+//   Measured with a settled random pile (the island's cpu time of solve_convex_model,
+//   dual / lifted): 14 contacts 0.87, 30 contacts 1.26, 64 contacts 1.61, 179 contacts
+//   1.99, 327 contacts 1.78; kLiftedMinContacts is set between the first two.
+//
+// Both have the same optimum in λn, λt and v⁺ (v⁺ is unique; λ is unique where the ρ term
+// and W make it so): the equality only names J M⁻¹ Jᵀ λ. Phase 2's row `nc` is eᵀλn ≤ κ
+// in both; the caller sets its upper bound u(nc).
+#include <lcprelax/kkt/qp_problem.hpp>
+#include <lcprelax/models/contact_step.hpp>
+
+namespace lcprelax::detail {
+
+/// A phase QP and where the impulses sit in its unknowns: x(lambda_offset + i) is λn_i for
+/// i < nc and λt_(i − nc) for nc ≤ i < nc + nf (phase 1 has λn only).
+struct ConvexPhaseQp {
+  QpProblem problem;
+  Index lambda_offset = 0;
+};
+
+/// The formulation `requested` resolves to for island `s` (automatic: lifted iff the
+/// island has at least kLiftedMinContacts contacts).
+ConvexFormulation resolve_convex_formulation(ConvexFormulation requested, const ContactSystem& s);
+
+/// What both phases of one island need.
+struct ConvexModelData {
+  ConvexModelData(const ContactSystem& system, double dt, ConvexFormulation form);
+  const ContactSystem& s;
+  ConvexFormulation form;  ///< dual or lifted (resolved)
+  Vector bn;               ///< Jn v* + max(φ, 0)/Δt (m/s)
+  Vector w_nn;             ///< diag(Wnn) = diag(Jn M⁻¹ Jnᵀ) (1/kg)
+  SparseMatrix W;          ///< J M⁻¹ Jᵀ, rows and columns (contacts, friction rows); dual only
+};
+
+/// Phase 1: min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ bn.
+ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d);
+
+/// Phase 2 (contact_step.hpp) with u(nc) = +∞ for eᵀλn ≤ κ (the caller sets it).
+ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, double rho);
+
+}  // namespace lcprelax::detail
