@@ -3,8 +3,10 @@
 // and turns every CHOLMOD outcome into a FactorResult (CHOLMOD never prints or aborts).
 #include "cholmod_engine.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <string>
 
 namespace lcprelax::sparse::detail {
@@ -56,6 +58,9 @@ void CholmodEngine::release() {
   if (Y_) cholmod_free_dense(&Y_, &common_);
   if (E_) cholmod_free_dense(&E_, &common_);
   pattern_.clear();
+  perm_.clear();
+  slot_.clear();
+  S_ = SparseMatrix();
   n_ = 0;
   factored_ = false;
   inertia_ = Inertia{};
@@ -97,7 +102,109 @@ FactorResult CholmodEngine::analyze(const SparseMatrix& A) {
     return r;
   }
   n_ = static_cast<Index>(A.rows());
+  if (kind_ == CholmodKind::simplicial_ldlt && n_ > 0) return analyze_prepermuted(ref.get());
   return {};
+}
+
+FactorResult CholmodEngine::analyze_prepermuted(const SparseMatrix& A) {
+  const Index n = n_;
+  const Index* p = static_cast<const Index*>(L_->Perm);
+  perm_.resize(n);
+  if (p)
+    std::copy(p, p + n, perm_.begin());
+  else
+    std::iota(perm_.begin(), perm_.end(), 0);
+  std::vector<Index> pinv(n);
+  for (Index k = 0; k < n; ++k) pinv[perm_[k]] = k;
+  // Entries of upper(P A Pᵀ): input entry (i, j), i ≤ j, lands at (min, max) of
+  // (pinv i, pinv j). Bucketed by column, rows sorted within a column; duplicates share
+  // a slot.
+  struct Entry {
+    Index row, input;
+  };
+  std::vector<Index> start(n + 1, 0);
+  const auto target = [&](Index i, Index j, Index& r, Index& c) {
+    r = std::min(pinv[i], pinv[j]);
+    c = std::max(pinv[i], pinv[j]);
+  };
+  Index r = 0, c = 0;
+  for (Index j = 0; j < A.outerSize(); ++j)
+    for (Index k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k)
+      if (A.innerIndexPtr()[k] <= j) {
+        target(A.innerIndexPtr()[k], j, r, c);
+        ++start[c + 1];
+      }
+  for (Index j = 0; j < n; ++j) start[j + 1] += start[j];
+  std::vector<Entry> e(static_cast<std::size_t>(start[n]));
+  std::vector<Index> next(start.begin(), start.end() - 1);
+  for (Index j = 0; j < A.outerSize(); ++j)
+    for (Index k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k)
+      if (A.innerIndexPtr()[k] <= j) {
+        target(A.innerIndexPtr()[k], j, r, c);
+        e[next[c]++] = {r, k};
+      }
+  slot_.assign(static_cast<std::size_t>(A.nonZeros()), -1);
+  std::vector<Index> outer(n + 1, 0), inner;
+  inner.reserve(e.size());
+  for (Index col = 0; col < n; ++col) {
+    std::sort(e.begin() + start[col], e.begin() + start[col + 1],
+              [](const Entry& x, const Entry& y) { return x.row < y.row; });
+    for (Index t = start[col]; t < start[col + 1]; ++t) {
+      if (t == start[col] || e[t].row != e[t - 1].row) {
+        inner.push_back(e[t].row);
+        ++outer[col + 1];
+      }
+      slot_[e[t].input] = static_cast<Index>(inner.size()) - 1;
+    }
+  }
+  for (Index j = 0; j < n; ++j) outer[j + 1] += outer[j];
+  S_.resize(n, n);
+  S_.resizeNonZeros(static_cast<Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), S_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), S_.innerIndexPtr());
+  std::fill(S_.valuePtr(), S_.valuePtr() + S_.nonZeros(), 0.0);
+  // Symbolic analysis of S in its own (natural) order; AMD's order was postordered already.
+  cholmod_free_factor(&L_, &common_);
+  const int ordering = common_.method[0].ordering, postorder = common_.postorder;
+  common_.method[0].ordering = CHOLMOD_NATURAL;
+  common_.postorder = 0;
+  cholmod_sparse s = view_permuted();
+  common_.status = CHOLMOD_OK;
+  L_ = cholmod_analyze(&s, &common_);
+  common_.method[0].ordering = ordering;
+  common_.postorder = postorder;
+  if (!L_ || common_.status < CHOLMOD_OK || L_->ordering != CHOLMOD_NATURAL) {
+    FactorResult r = L_ ? make_result(FactorStatus::internal_error, "cholmod_analyze of the permuted matrix "
+                                                                   "did not keep the natural ordering")
+                        : from_common(common_, "cholmod_analyze");
+    release();
+    return r;
+  }
+  return {};
+}
+
+cholmod_sparse CholmodEngine::view_permuted() {
+  cholmod_sparse s{};
+  s.nrow = s.ncol = static_cast<size_t>(n_);
+  s.nzmax = static_cast<size_t>(S_.nonZeros());
+  s.p = S_.outerIndexPtr();
+  static Index no_index = 0;
+  static double no_value = 0.0;
+  s.i = S_.nonZeros() > 0 ? S_.innerIndexPtr() : &no_index;
+  s.x = S_.nonZeros() > 0 ? S_.valuePtr() : &no_value;
+  s.stype = 1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
+Index CholmodEngine::input_column(Index pivot) const {
+  if (!perm_.empty()) return perm_[pivot];
+  const Index* perm = static_cast<const Index*>(L_->Perm);
+  return perm ? perm[pivot] : pivot;
 }
 
 FactorResult CholmodEngine::factorize(const SparseMatrix& A) {
@@ -107,7 +214,17 @@ FactorResult CholmodEngine::factorize(const SparseMatrix& A) {
   if (auto r = check_finite(ref.get()); !r.ok()) return r;
   factored_ = false;
   inertia_ = Inertia{};
-  cholmod_sparse a = view(ref.get());
+  cholmod_sparse a;
+  if (!perm_.empty()) {
+    double* sv = S_.valuePtr();
+    std::fill(sv, sv + S_.nonZeros(), 0.0);
+    const double* av = ref.get().valuePtr();
+    for (std::size_t k = 0; k < slot_.size(); ++k)
+      if (slot_[k] >= 0) sv[slot_[k]] += av[k];
+    a = view_permuted();
+  } else {
+    a = view(ref.get());
+  }
   common_.status = CHOLMOD_OK;
   const int done = cholmod_factorize(&a, L_, &common_);
   if (!done || common_.status < CHOLMOD_OK) return from_common(common_, "cholmod_factorize");
@@ -127,8 +244,7 @@ FactorResult CholmodEngine::factorize(const SparseMatrix& A) {
 
 FactorResult CholmodEngine::failed_pivot() {
   const Index k = static_cast<Index>(L_->minor);
-  const Index* perm = static_cast<const Index*>(L_->Perm);
-  const Index column = perm ? perm[k] : k;
+  const Index column = input_column(k);
   const std::string where = "pivot " + std::to_string(k) + " (column " +
                             std::to_string(column) + " of the input matrix)";
   if (kind_ == CholmodKind::simplicial_ldlt) {
@@ -142,12 +258,11 @@ FactorResult CholmodEngine::scan_diagonal() {
   // Simplicial LDLᵀ: the first entry of column j of L is D(j,j).
   const Index* Lp = static_cast<const Index*>(L_->p);
   const double* Lx = static_cast<const double*>(L_->x);
-  const Index* perm = static_cast<const Index*>(L_->Perm);
   Inertia in;
   for (Index j = 0; j < n_; ++j) {
     const double d = Lx[Lp[j]];
     if (std::isnan(d)) {
-      const Index column = perm ? perm[j] : j;
+      const Index column = input_column(j);
       return make_result(FactorStatus::zero_pivot,
                          "NaN pivot in LDL': pivot " + std::to_string(j) + " (column " +
                              std::to_string(column) + " of the input matrix)",
@@ -171,12 +286,18 @@ FactorResult CholmodEngine::solve(Eigen::Ref<DenseMatrix> B) {
   }
   if (auto r = check_rhs(n_, static_cast<Index>(B.rows())); !r.ok()) return r;
   if (B.cols() == 0 || n_ == 0) return {};
+  const bool permuted = !perm_.empty();
+  if (permuted) {  // S y = c with c_k = b_perm[k], then x_perm[k] = y_k
+    rhs_.resize(n_, B.cols());
+    for (Eigen::Index j = 0; j < B.cols(); ++j)
+      for (Index k = 0; k < n_; ++k) rhs_(k, j) = B(perm_[k], j);
+  }
   cholmod_dense b{};
   b.nrow = static_cast<size_t>(n_);
   b.ncol = static_cast<size_t>(B.cols());
-  b.d = static_cast<size_t>(B.outerStride());
+  b.d = permuted ? static_cast<size_t>(n_) : static_cast<size_t>(B.outerStride());
   b.nzmax = b.d * b.ncol;
-  b.x = B.data();
+  b.x = permuted ? rhs_.data() : B.data();
   b.z = nullptr;
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
@@ -186,7 +307,11 @@ FactorResult CholmodEngine::solve(Eigen::Ref<DenseMatrix> B) {
   }
   const double* x = static_cast<const double*>(X_->x);
   for (Eigen::Index j = 0; j < B.cols(); ++j) {
-    std::memcpy(B.col(j).data(), x + j * X_->d, sizeof(double) * static_cast<size_t>(n_));
+    if (permuted) {
+      for (Index k = 0; k < n_; ++k) B(perm_[k], j) = x[k + j * X_->d];
+    } else {
+      std::memcpy(B.col(j).data(), x + j * X_->d, sizeof(double) * static_cast<size_t>(n_));
+    }
   }
   return {};
 }
@@ -227,6 +352,9 @@ std::unique_ptr<CholmodEngine> CholmodEngine::clone_analysis() const {
     return clone;
   }
   clone->pattern_ = pattern_;
+  clone->perm_ = perm_;
+  clone->slot_ = slot_;
+  clone->S_ = S_;
   clone->n_ = n_;
   return clone;
 }

@@ -39,8 +39,20 @@ class CholmodEngine {
   FactorResult failed_pivot();
   FactorResult scan_diagonal();
 
+  FactorResult analyze_prepermuted(const SparseMatrix& A);
+  cholmod_sparse view_permuted();
+  Index input_column(Index pivot) const;
+
   CholmodKind kind_;
   double dbound_;
+  // Simplicial LDLᵀ is factorized from a pre-permuted copy S = upper(P A Pᵀ) under the
+  // natural ordering: CHOLMOD then factorizes S in place, where with its own permutation
+  // it would build A(p,p) by two transposes on every factorize (measured: 7.5% of a pile
+  // step's instructions). The fill-reducing P is AMD's, from a first analysis of A.
+  std::vector<Index> perm_;   // pivot k is input row/column perm_[k]; empty: not used
+  std::vector<Index> slot_;   // input entry → value slot of S (−1: lower entry, ignored)
+  SparseMatrix S_;
+  DenseMatrix rhs_;           // permuted right-hand sides of solve()
   cholmod_common common_{};
   cholmod_factor* L_ = nullptr;
   cholmod_dense* X_ = nullptr;  // solve workspace, reused between solves
