@@ -6,7 +6,10 @@
 // factorization and solves the new matrix; a changed pattern gives pattern_mismatch, NaN
 // gives invalid_input, a singular matrix zero_pivot (also without pivoting, where MUMPS'
 // static pivoting would otherwise replace the zero pivot silently), solve() before
-// factorize() not_analyzed — statuses with messages, never an abort.
+// factorize() not_analyzed — statuses with messages, never an abort; after a failed
+// numeric phase the next factorize() of a good matrix succeeds (PETSc would skip it);
+// the static-order backend's refactorize_pivoted() gives the same inertia and residual
+// ≤ 1e-12, and the next factorize() is in the static order again.
 // Without PETSc: analyze() returns invalid_input naming LCPRELAX_WITH_PETSC.
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/mpi_session.hpp>
@@ -153,6 +156,70 @@ TEST(PetscMumpsLdlt, StaticPivotOrderReportsReplacedPivots) {
   X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
   EXPECT_LE(relative_residual(U, X, B), 1e-12);
+}
+
+SparseMatrix with_zero_row_and_column(SparseMatrix U, int row) {
+  for (int k = U.outerIndexPtr()[row]; k < U.outerIndexPtr()[row + 1]; ++k) U.valuePtr()[k] = 0.0;
+  for (int j = row + 1; j < U.cols(); ++j)
+    for (int k = U.outerIndexPtr()[j]; k < U.outerIndexPtr()[j + 1]; ++k)
+      if (U.innerIndexPtr()[k] == row) U.valuePtr()[k] = 0.0;
+  return U;
+}
+
+// PETSc skips MUMPS' numeric phase while the previous phase's INFOG(1) is negative; the
+// backend creates its factor anew after a failure, so the next factorize() factorizes.
+TEST(PetscMumpsLdlt, FactorizesAgainAfterAFailedNumericPhase) {
+  const SparseMatrix U = kkt_upper(40, 15, 1);
+  PetscMumpsLdlt mumps;  // pivoting: the singular matrix fails in MUMPS (INFOG(1) = −10)
+  ASSERT_TRUE(mumps.analyze(U).ok());
+  EXPECT_EQ(mumps.factorize(with_zero_row_and_column(U, 5)).status, FactorStatus::zero_pivot);
+  const auto r = mumps.factorize(U);
+  ASSERT_TRUE(r.ok()) << r.message;
+  const DenseMatrix B = rhs(55, 2);
+  DenseMatrix X = B;
+  ASSERT_TRUE(mumps.solve(X).ok());
+  EXPECT_LE(relative_residual(U, X, B), 1e-12);
+  EXPECT_EQ(mumps.inertia().negative, 15);
+}
+
+// refactorize_pivoted() of the static-order backend: the last factorize()'s matrix with
+// threshold pivoting, the same inertia and solution quality; the next factorize() is in the
+// static order again (a zero pivot is reported as replaced, not pivoted away).
+TEST(PetscMumpsLdlt, PivotedRefactorizationOfTheStaticOrderBackend) {
+  const SparseMatrix U1 = kkt_upper(40, 15, 1), U2 = kkt_upper(40, 15, 2, 3.0);
+  PetscMumpsLdlt mumps(/*distributed=*/false, /*pivoting=*/false);
+  EXPECT_TRUE(mumps.can_refactorize_pivoted());
+  EXPECT_EQ(mumps.refactorize_pivoted().status, FactorStatus::not_analyzed);
+  ASSERT_TRUE(mumps.analyze(U1).ok());
+  EXPECT_EQ(mumps.refactorize_pivoted().status, FactorStatus::not_analyzed);  // nothing factorized yet
+  ASSERT_TRUE(mumps.factorize(U1).ok());
+  const auto r = mumps.refactorize_pivoted();
+  ASSERT_TRUE(r.ok()) << r.message;
+  EXPECT_EQ(mumps.pivoted_refactorizations(), 1);
+  EXPECT_EQ(mumps.numeric_factorizations(), 2);
+  EXPECT_EQ(mumps.inertia().positive, 40);
+  EXPECT_EQ(mumps.inertia().negative, 15);
+  const DenseMatrix B = rhs(55, 2);
+  DenseMatrix X = B;
+  ASSERT_TRUE(mumps.solve(X).ok());
+  EXPECT_LE(relative_residual(U1, X, B), 1e-12);
+
+  // A singular matrix: replaced pivot in the static order, MUMPS' failure with pivoting;
+  // both are statuses, and the backend factorizes the next matrix in the static order.
+  const SparseMatrix singular = with_zero_row_and_column(U1, 5);
+  EXPECT_EQ(mumps.factorize(singular).status, FactorStatus::zero_pivot);
+  EXPECT_EQ(mumps.refactorize_pivoted().status, FactorStatus::zero_pivot);
+  EXPECT_EQ(mumps.factorize(singular).status, FactorStatus::zero_pivot);  // static order again
+  ASSERT_TRUE(mumps.factorize(U2).ok());
+  X = B;
+  ASSERT_TRUE(mumps.solve(X).ok());
+  EXPECT_LE(relative_residual(U2, X, B), 1e-12);
+
+  PetscMumpsLdlt pivoting;  // already pivots: nothing to redo differently
+  EXPECT_FALSE(pivoting.can_refactorize_pivoted());
+  CholmodLdlt cholmod;
+  EXPECT_FALSE(cholmod.can_refactorize_pivoted());
+  EXPECT_EQ(cholmod.refactorize_pivoted().status, FactorStatus::invalid_input);
 }
 
 TEST(MpiSession, OneProcessWithoutMpiexec) {

@@ -33,6 +33,10 @@ FactorResult petsc_failure(PetscErrorCode e, const char* what) {
 
 }  // namespace
 
+// MUMPS' pivoting: threshold_null_detection for pivoting = true; static_order without;
+// threshold for one refactorize_pivoted() of the static-order backend.
+enum class Pivoting { threshold_null_detection, static_order, threshold };
+
 struct PetscMumpsLdlt::Impl {
   MPI_Comm comm = MPI_COMM_SELF;
   Mat A = nullptr, F = nullptr;
@@ -41,9 +45,11 @@ struct PetscMumpsLdlt::Impl {
   detail::Pattern pattern;
   PetscInt n = 0, lo = 0, hi = 0;
   bool factored = false;
+  bool filled = false;  // A holds the values of a factorize() call (refactorize_pivoted() reuses them)
   long nnz = 0;
   PetscInt workspace_margin = 50;  // ICNTL(14), percent over the analysis' estimate
   Inertia inertia;
+  Pivoting home = Pivoting::static_order;  // the backend's mode (pivoting_ or not)
   // Owned rows [lo, hi) of the full symmetric pattern (CSR, global column indices) and, per
   // entry, the index of its value in the upper-triangle input: built once in analyze(), so
   // that each refactorization is a gather plus MatSetValues, without allocations.
@@ -60,6 +66,7 @@ struct PetscMumpsLdlt::Impl {
     if (F) MatDestroy(&F);
     if (A) MatDestroy(&A);
     factored = false;
+    filled = false;
     nnz = 0;
   }
 
@@ -81,6 +88,100 @@ struct PetscMumpsLdlt::Impl {
       row_start.push_back(static_cast<PetscInt>(columns.size()));
     }
     values.resize(columns.size());
+  }
+
+  // MUMPS' factor object and its analysis of A's pattern (MatGetFactor + symbolic phase).
+  // Also the way back from a failed numeric phase: PETSc's MatCholeskyFactorNumeric for
+  // MUMPS returns at once, without factorizing, while INFOG(1) < 0 from the previous phase
+  // (it takes it for a failed analysis), so after any failure the factor is created anew.
+  FactorResult create_factor(Pivoting mode) {
+    if (F) MatDestroy(&F);
+    factored = false;
+    LCPRELAX_PETSC(MatGetFactor(A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &F), "MatGetFactor(mumps, cholesky)");
+    LCPRELAX_PETSC(MatMumpsSetIcntl(F, 14, workspace_margin), "ICNTL(14)");  // before the analysis
+    if (mode == Pivoting::threshold_null_detection) {
+      LCPRELAX_PETSC(MatMumpsSetIcntl(F, 24, 1), "ICNTL(24)");  // detect null pivots
+    } else {
+      // static_order: static pivot order (CNTL(1) = 0) with MUMPS' static pivoting
+      // (CNTL(4) = 1e-300: pivots of magnitude below 1e-300 are replaced by that threshold
+      // with their sign; factorize() reports any such replacement, INFOG(25), as
+      // zero_pivot), like CHOLMOD's LDLᵀ of a quasi-definite matrix; wrong-signed pivots
+      // still show in the inertia. threshold: CNTL(1) = 0.01, static pivoting off.
+      set_cntl(mode);
+    }
+    IS rowperm = nullptr, colperm = nullptr;
+    LCPRELAX_PETSC(MatGetOrdering(A, MATORDERINGNATURAL, &rowperm, &colperm), "MatGetOrdering");
+    MatFactorInfo info;
+    MatFactorInfoInitialize(&info);
+    const PetscErrorCode e = MatCholeskyFactorSymbolic(F, A, rowperm, &info);
+    ISDestroy(&rowperm);
+    ISDestroy(&colperm);
+    LCPRELAX_PETSC(e, "symbolic factorization");
+    return {};
+  }
+  void set_cntl(Pivoting mode) {
+    MatMumpsSetCntl(F, 1, mode == Pivoting::static_order ? 0.0 : 0.01);
+    MatMumpsSetCntl(F, 4, mode == Pivoting::static_order ? 1e-300 : -1.0);
+  }
+
+  // MUMPS' numeric phase on the filled matrix A. MUMPS sizes its workspace from the
+  // analysis' estimate plus ICNTL(14) percent; numerical pivoting (delayed pivots of
+  // indefinite KKT matrices) can exceed it (INFOG(1) = −9): then the margin is doubled, the
+  // factor created anew (see create_factor) and the factorization repeated, up to
+  // kMaxMargin (measured: the default 20% failed on STCQP1's KKT with pivoting; LISWET1's
+  // threshold-pivoted refactorization needed more than 50%). After any other failure the
+  // factor is created anew in the home mode, so the next factorize() runs.
+  static constexpr PetscInt kMaxMargin = 800;
+  FactorResult numeric(Pivoting mode) {
+    factored = false;
+    PetscErrorCode e = 0;
+    PetscInt infog1 = 0, infog2 = 0;
+    for (;;) {
+      MatMumpsSetIcntl(F, 14, workspace_margin);
+      MatFactorInfo info;
+      MatFactorInfoInitialize(&info);
+      e = MatCholeskyFactorNumeric(F, A, &info);
+      MatMumpsGetInfog(F, 1, &infog1);
+      if (!e && infog1 >= 0) break;
+      MatMumpsGetInfog(F, 2, &infog2);
+      const bool grow = infog1 == -9 && workspace_margin < kMaxMargin;
+      if (grow) workspace_margin *= 2;
+      if (auto r = create_factor(grow ? mode : home); !r.ok()) return r;
+      if (!grow) break;
+    }
+    if (e || infog1 < 0) {
+      const std::string codes = " (INFOG(1) = " + std::to_string(infog1) + ", INFOG(2) = " + std::to_string(infog2) + ")";
+      if (infog1 == -9 || infog1 == -13) return detail::make_result(FactorStatus::out_of_memory, "MUMPS: out of memory" + codes);
+      if (infog1 == -10) return detail::make_result(FactorStatus::zero_pivot, "MUMPS: numerically singular matrix" + codes);
+      if (e) return petsc_failure(e, "numeric factorization");
+      return detail::make_result(FactorStatus::internal_error, "MUMPS INFOG(1) = " + std::to_string(infog1));
+    }
+    if (mode == Pivoting::static_order) {
+      // INFOG(25): pivots that MUMPS' static pivoting replaced (|d| < CNTL(4) = 1e-300, i.e.
+      // zero to working precision). The factor is then that of another matrix, with entries
+      // ~1e300: the refined solves returned NaN and the interior point diverged (QADLITTL
+      // with kkt_backend = mumps: 1 or 2 replaced pivots in three factorizations up to
+      // iteration 17, then NaN residuals and "iterates diverge"). CHOLMOD's LDLᵀ
+      // reports such a pivot; so does this backend now, and the QP solver raises its
+      // regularization and refactorizes (kkt/src/qp_solver.cpp, Impl::factorize).
+      PetscInt replaced = 0;
+      MatMumpsGetInfog(F, 25, &replaced);
+      if (replaced > 0)
+        return detail::make_result(FactorStatus::zero_pivot, "MUMPS static pivoting replaced " +
+                                                                 std::to_string(replaced) + " tiny pivot(s)");
+    }
+    PetscInt negative = 0, null_pivots = 0, entries = 0;
+    MatMumpsGetInfog(F, 12, &negative);
+    MatMumpsGetInfog(F, 28, &null_pivots);
+    MatMumpsGetInfog(F, 29, &entries);
+    nnz = entries >= 0 ? static_cast<long>(entries) : -static_cast<long>(entries) * 1000000L;
+    inertia.negative = negative;
+    inertia.zero = null_pivots;
+    inertia.positive = static_cast<Index>(n) - negative - null_pivots;
+    if (null_pivots > 0)
+      return detail::make_result(FactorStatus::zero_pivot, "MUMPS found " + std::to_string(null_pivots) + " null pivot(s)");
+    factored = true;
+    return {};
   }
 
   // Every entry of the owned rows is set (INSERT_VALUES on the whole pattern).
@@ -131,26 +232,8 @@ FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
   LCPRELAX_PETSC(MatSetOption(m.A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "MatSetOption");
   if (auto r = m.fill(A); !r.ok()) return r;
 
-  LCPRELAX_PETSC(MatGetFactor(m.A, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &m.F), "MatGetFactor(mumps, cholesky)");
-  LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 14, m.workspace_margin), "ICNTL(14)");  // before the analysis
-  if (pivoting_) {
-    LCPRELAX_PETSC(MatMumpsSetIcntl(m.F, 24, 1), "ICNTL(24)");  // detect null pivots
-  } else {
-    // Static pivot order (CNTL(1) = 0) with MUMPS' static pivoting (CNTL(4) = 1e-300: pivots
-    // of magnitude below 1e-300 are replaced by that threshold with their sign; factorize()
-    // reports any such replacement, INFOG(25), as zero_pivot), like CHOLMOD's LDLᵀ of a
-    // quasi-definite matrix; wrong-signed pivots still show in the inertia.
-    LCPRELAX_PETSC(MatMumpsSetCntl(m.F, 1, 0.0), "CNTL(1)");
-    LCPRELAX_PETSC(MatMumpsSetCntl(m.F, 4, 1e-300), "CNTL(4)");
-  }
-  IS rowperm = nullptr, colperm = nullptr;
-  LCPRELAX_PETSC(MatGetOrdering(m.A, MATORDERINGNATURAL, &rowperm, &colperm), "MatGetOrdering");
-  MatFactorInfo info;
-  MatFactorInfoInitialize(&info);
-  const PetscErrorCode e = MatCholeskyFactorSymbolic(m.F, m.A, rowperm, &info);
-  ISDestroy(&rowperm);
-  ISDestroy(&colperm);
-  LCPRELAX_PETSC(e, "symbolic factorization");
+  m.home = pivoting_ ? Pivoting::threshold_null_detection : Pivoting::static_order;
+  if (auto r = m.create_factor(m.home); !r.ok()) return r;
   PetscInt estimate = 0;
   MatMumpsGetInfog(m.F, 20, &estimate);
   m.nnz = estimate >= 0 ? static_cast<long>(estimate) : -static_cast<long>(estimate) * 1000000L;
@@ -169,57 +252,29 @@ FactorResult PetscMumpsLdlt::factorize(const SparseMatrix& A_in) {
   if (auto r = detail::check_pattern(m.pattern, A); !r.ok()) return r;
   if (auto r = detail::check_finite(A); !r.ok()) return r;
   m.factored = false;
+  m.filled = false;
   if (auto r = m.fill(A); !r.ok()) return r;
-  MatFactorInfo info;
-  MatFactorInfoInitialize(&info);
+  m.filled = true;
   ++numeric_factorizations_;
-  // MUMPS sizes its workspace from the analysis' estimate plus ICNTL(14) percent; numerical
-  // pivoting (delayed pivots of indefinite KKT matrices) can exceed it (INFOG(1) = −9):
-  // then the margin is doubled and the factorization repeated, up to 400% (measured: the
-  // default 20% failed on STCQP1's KKT).
-  PetscErrorCode e = 0;
-  PetscInt infog1 = 0, negative = 0, null_pivots = 0, entries = 0;
-  for (PetscInt margin = m.workspace_margin;; margin *= 2) {
-    MatMumpsSetIcntl(m.F, 14, margin);
-    e = MatCholeskyFactorNumeric(m.F, m.A, &info);
-    MatMumpsGetInfog(m.F, 1, &infog1);
-    if (infog1 != -9 || margin >= 400) break;
-    m.workspace_margin = 2 * margin;
-  }
-  if (e || infog1 < 0) {
-    PetscInt infog2 = 0;
-    MatMumpsGetInfog(m.F, 2, &infog2);
-    const std::string codes = " (INFOG(1) = " + std::to_string(infog1) + ", INFOG(2) = " + std::to_string(infog2) + ")";
-    if (infog1 == -9 || infog1 == -13) return detail::make_result(FactorStatus::out_of_memory, "MUMPS: out of memory" + codes);
-    if (infog1 == -10) return detail::make_result(FactorStatus::zero_pivot, "MUMPS: numerically singular matrix" + codes);
-    if (e) return petsc_failure(e, "numeric factorization");
-    return detail::make_result(FactorStatus::internal_error, "MUMPS INFOG(1) = " + std::to_string(infog1));
-  }
-  if (!pivoting_) {
-    // INFOG(25): pivots that MUMPS' static pivoting replaced (|d| < CNTL(4) = 1e-300, i.e.
-    // zero to working precision). The factor is then that of another matrix, with entries
-    // ~1e300: the refined solves returned NaN and the interior point diverged (QADLITTL
-    // with kkt_backend = mumps: 1 or 2 replaced pivots in three factorizations up to
-    // iteration 17, then NaN residuals and "iterates diverge"). CHOLMOD's LDLᵀ
-    // reports such a pivot; so does this backend now, and the QP solver raises its
-    // regularization and refactorizes (kkt/src/qp_solver.cpp, Impl::factorize).
-    PetscInt replaced = 0;
-    MatMumpsGetInfog(m.F, 25, &replaced);
-    if (replaced > 0)
-      return detail::make_result(FactorStatus::zero_pivot, "MUMPS static pivoting replaced " +
-                                                               std::to_string(replaced) + " tiny pivot(s)");
-  }
-  MatMumpsGetInfog(m.F, 12, &negative);
-  MatMumpsGetInfog(m.F, 28, &null_pivots);
-  MatMumpsGetInfog(m.F, 29, &entries);
-  m.nnz = entries >= 0 ? static_cast<long>(entries) : -static_cast<long>(entries) * 1000000L;
-  m.inertia.negative = negative;
-  m.inertia.zero = null_pivots;
-  m.inertia.positive = static_cast<Index>(m.n) - negative - null_pivots;
-  if (null_pivots > 0)
-    return detail::make_result(FactorStatus::zero_pivot, "MUMPS found " + std::to_string(null_pivots) + " null pivot(s)");
-  m.factored = true;
-  return {};
+  return m.numeric(m.home);
+}
+
+FactorResult PetscMumpsLdlt::refactorize_pivoted() {
+  Impl& m = *impl_;
+  if (!m.F || !m.filled)
+    return detail::make_result(FactorStatus::not_analyzed, "refactorize_pivoted() without a factorize()");
+  ++numeric_factorizations_;
+  if (pivoting_) return m.numeric(Pivoting::threshold_null_detection);
+  // Threshold pivoting for this factorization only: CNTL(1) = 0.01 (MUMPS' default for
+  // symmetric matrices: a 1×1 pivot is accepted if |d| ≥ 0.01 × the largest entry of its
+  // column in the front, else a 2×2 pivot or a delay to the parent front) and static
+  // pivoting off (CNTL(4) = −1: no pivot is perturbed). The analysis is kept; the static
+  // order is restored for the next factorize().
+  ++pivoted_refactorizations_;
+  m.set_cntl(Pivoting::threshold);
+  FactorResult r = m.numeric(Pivoting::threshold);
+  m.set_cntl(Pivoting::static_order);
+  return r;
 }
 
 FactorResult PetscMumpsLdlt::solve(Eigen::Ref<DenseMatrix> B) const {
@@ -264,6 +319,7 @@ FactorResult PetscMumpsLdlt::solve(Eigen::Ref<DenseMatrix>) const { return unava
 long PetscMumpsLdlt::factor_nnz() const { return 0; }
 Index PetscMumpsLdlt::rows() const { return 0; }
 Inertia PetscMumpsLdlt::inertia() const { return {}; }
+FactorResult PetscMumpsLdlt::refactorize_pivoted() { return unavailable(); }
 
 #endif
 

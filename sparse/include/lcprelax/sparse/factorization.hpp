@@ -78,6 +78,17 @@ class Factorization {
   /// and LU do not (LLᵀ fails on a matrix that is not positive definite anyway).
   virtual bool reports_inertia() const { return false; }
   virtual Inertia inertia() const { return {}; }
+  /// Whether refactorize_pivoted() can differ from factorize(): a backend that factorizes
+  /// in a static pivot order (PetscMumpsLdlt without pivoting) can repeat its last numeric
+  /// factorization with numerical (threshold) pivoting, for a caller whose inertia check
+  /// rejected the static-order factor (roundoff can flip a pivot's sign there).
+  virtual bool can_refactorize_pivoted() const { return false; }
+  /// The last factorize()'s matrix factorized again, with numerical pivoting; the factor,
+  /// inertia() and solve() are then this one's. Only after a factorize() of the same
+  /// analysis; the next factorize() is in the static order again. Default: invalid_input.
+  virtual FactorResult refactorize_pivoted() {
+    return {FactorStatus::invalid_input, -1, std::string(name()) + " has no pivoted refactorization"};
+  }
   /// Numeric factorizations performed since construction (so tests can count reuse).
   int numeric_factorizations() const { return numeric_factorizations_; }
 

@@ -17,7 +17,14 @@
 // inertia()) it is meant for
 // quasi-definite matrices (Vanderbei 1995), which need no pivoting, and avoids the delayed pivots that made MUMPS run out of its workspace on
 // interior-point KKT matrices near the solution (measured on STCQP1: INFOG(1) = −9 at every
-// regularization). The KKT backend (kkt/src/kkt_system.cpp) uses pivoting = false. Where
+// regularization). The KKT backend (kkt/src/kkt_system.cpp) uses pivoting = false.
+// Roundoff can flip a pivot's sign in that static order where CHOLMOD's order does not
+// (LISWET1 near its optimum with the inequality block's δ dropped: INFOG(12) = 10,001
+// negative pivots for 10,000 constraint rows): refactorize_pivoted() then repeats the
+// numeric phase once with threshold pivoting (CNTL(1) = 0.01, static pivoting off,
+// CNTL(4) = −1; the analysis is kept), whose inertia is correct (measured: 10,000 negative,
+// INFOG(13) = 19,201 delayed pivots, 127,671 factor entries against 89,410), and the next
+// factorize() is in the static order again. Where
 // CHOLMOD's LDLᵀ finds a wrong-signed pivot and the QP solver raises its regularization ρ
 // tenfold, MUMPS may accept the same matrix: then the two backends end a solve at
 // different ρ, which only matters where the KKT matrix is singular to working precision
@@ -25,6 +32,13 @@
 // backend; tests/mpi/mpi_qp_mumps_distributed_test.cpp). inertia() reports the signs of D from
 // MUMPS (INFOG(12) negative pivots; with pivoting, null pivots detected with
 // ICNTL(24) = 1 give zero_pivot).
+//
+// After a failed numeric phase (INFOG(1) < 0) the MUMPS factor is created and analysed
+// anew: PETSc's numeric factorization for MUMPS returns without factorizing while the
+// previous phase's INFOG(1) is negative, so before this every later factorize() of the
+// same analysis failed with the first error (on LISWET1 a workspace shortage, INFOG(1) =
+// −9, of the pivoted factorization then failed all later ones at any regularization).
+// INFOG(1) = −9 doubles the workspace margin ICNTL(14) (from 50%, up to 800%) and retries.
 //
 // Communicator:
 //   distributed = false: PETSC_COMM_SELF: each process factorizes its own matrices (the
@@ -60,10 +74,18 @@ class PetscMumpsLdlt final : public Factorization {
   bool reports_inertia() const override { return true; }
   Inertia inertia() const override;
   bool distributed() const { return distributed_; }
+  /// Without pivoting: the last factorize()'s matrix again with threshold pivoting
+  /// (CNTL(1) = 0.01, static pivoting off), for this one factorization; with pivoting it
+  /// repeats factorize()'s numeric phase.
+  bool can_refactorize_pivoted() const override { return !pivoting_; }
+  FactorResult refactorize_pivoted() override;
+  /// refactorize_pivoted() calls since construction.
+  int pivoted_refactorizations() const { return pivoted_refactorizations_; }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  int pivoted_refactorizations_ = 0;
   bool distributed_;
   bool pivoting_;
 };
