@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
   sparse::MpiSession session(&argc, &argv);
   CLI::App app{"KKT backends of the QP: CHOLMOD vs MUMPS (1 process, distributed)"};
   std::string data = "tests/data/maros_meszaros", csv;
-  std::string problems = "CVXQP1_S,PRIMAL1,MOSARQP1,CONT-050,STCQP1,AUG2D";
+  std::string problems = "CVXQP1_S,PRIMAL1,MOSARQP1,CONT-050,STCQP1,LISWET1,AUG2D";
   std::string backends = "cholmod,mumps,mumps_distributed";
   Index random_n = 30000;
   int reps = 1;
