@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -168,11 +169,16 @@ SparseMatrix with_zero_row_and_column(SparseMatrix U, int row) {
 
 // PETSc skips MUMPS' numeric phase while the previous phase's INFOG(1) is negative; the
 // backend creates its factor anew after a failure, so the next factorize() factorizes.
+// (With pivoting = true, ICNTL(24) turns a singular matrix into null pivots, INFOG(1) ≥ 0;
+// the failure here is the threshold-pivoted refactorization's, INFOG(1) = −10.)
 TEST(PetscMumpsLdlt, FactorizesAgainAfterAFailedNumericPhase) {
   const SparseMatrix U = kkt_upper(40, 15, 1);
-  PetscMumpsLdlt mumps;  // pivoting: the singular matrix fails in MUMPS (INFOG(1) = −10)
+  PetscMumpsLdlt mumps(/*distributed=*/false, /*pivoting=*/false);
   ASSERT_TRUE(mumps.analyze(U).ok());
   EXPECT_EQ(mumps.factorize(with_zero_row_and_column(U, 5)).status, FactorStatus::zero_pivot);
+  const auto failed = mumps.refactorize_pivoted();
+  EXPECT_EQ(failed.status, FactorStatus::zero_pivot);
+  EXPECT_NE(failed.message.find("INFOG(1) = -10"), std::string::npos) << failed.message;
   const auto r = mumps.factorize(U);
   ASSERT_TRUE(r.ok()) << r.message;
   const DenseMatrix B = rhs(55, 2);
