@@ -31,11 +31,11 @@ FactorResult petsc_failure(PetscErrorCode e, const char* what) {
     if (e_) return petsc_failure(e_, what);        \
   } while (0)
 
-}  // namespace
-
 // MUMPS' pivoting: threshold_null_detection for pivoting = true; static_order without;
 // threshold for one refactorize_pivoted() of the static-order backend.
 enum class Pivoting { threshold_null_detection, static_order, threshold };
+
+}  // namespace
 
 struct PetscMumpsLdlt::Impl {
   MPI_Comm comm = MPI_COMM_SELF;
