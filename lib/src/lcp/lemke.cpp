@@ -80,13 +80,22 @@ struct LemkeSolver::Impl {
   //   pivots up to 4e6) anything tighter misses roundoff ties and cycles into a singular
   //   basis.
   // Rows of B⁻¹ are formed only for rows still tied after x_B (one transposed solve each
-  // on the sparse path).
+  // on the sparse path). Returns −1 when a ratio is not finite (NaN or ∞ in x_B or B⁻¹:
+  // the basis has lost all accuracy; measured on a 20-body pile step).
   Index lexicographic_row(std::vector<Index> rows, const Vector& a, const Vector& xB, bool prefer_z0) const {
     double a_max = 0.0;
     for (Index i : rows) a_max = std::max(a_max, a(i));
+    bool finite = true;
     auto keep_minimal = [&](auto value, double absolute) {
       double best = std::numeric_limits<double>::infinity();
-      for (Index i : rows) best = std::min(best, value(i) / a(i));
+      for (Index i : rows) {
+        const double ratio = value(i) / a(i);
+        if (!std::isfinite(ratio)) {
+          finite = false;
+          return;
+        }
+        best = std::min(best, ratio);
+      }
       const double t = tol * (std::abs(best) + absolute);
       std::vector<Index> keep;
       for (Index i : rows)
@@ -94,6 +103,7 @@ struct LemkeSolver::Impl {
       rows.swap(keep);
     };
     keep_minimal([&](Index i) { return xB(i); }, 1.0 / a_max);
+    if (!finite) return -1;
     if (prefer_z0)
       for (Index i : rows)
         if (basic[i] == z0()) return i;
@@ -102,9 +112,9 @@ struct LemkeSolver::Impl {
     basis->inverse_rows(rows, inv_rows);
     std::vector<Index> slot(static_cast<std::size_t>(n), -1);
     for (std::size_t k = 0; k < rows.size(); ++k) slot[rows[k]] = static_cast<Index>(k);
-    for (Index col = 0; col < n && rows.size() > 1; ++col)
+    for (Index col = 0; col < n && rows.size() > 1 && finite; ++col)
       keep_minimal([&](Index i) { return inv_rows(col, slot[i]); }, 1.0);
-    return rows.front();
+    return finite ? rows.front() : -1;
   }
 
   void finish(LcpStatus status, const std::string& message) {
@@ -163,6 +173,7 @@ struct LemkeSolver::Impl {
     for (Index i = 0; i < n; ++i) rows[i] = i;
     Index r = lexicographic_row(rows, -a, xB, false);
     for (long pivot = 0;; ++pivot) {
+      if (r < 0) return finish(LcpStatus::numerical_error, "non-finite ratio in the minimum-ratio test (basis lost accuracy)");
       // Pivot on (r, entering): update the factorization and x_B.
       const bool updated = basis->replace(r, a);
       const double ar = a(r);
