@@ -3,8 +3,8 @@
 # (the numbers the README and bench/README.md quote). Run from the repository root after
 #   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2
 # Usage: bench/regenerate.sh [BUILD_DIR] [--quick]
-#   --quick: pile scaling only up to 200 bodies (the full 10..2,000 sweep takes hours on
-#   2 cores) and no Clp in the work-precision sweep.
+#   --quick: pile scaling only up to 200 bodies (the full 10..2,000 sweep took 17 min on
+#   2 cores, 2026-11-24) and no Clp in the work-precision sweep.
 # Every step writes its own files; a runner whose optional peer is missing (Clp, Siconos,
 # Box2D) is skipped with a message. Machines are noisy: compare ratios within one run.
 set -euo pipefail
