@@ -290,5 +290,38 @@ TEST(LemkeSparse, TwentyThousandUnknownsUseTheSparsePath) {
               r.info.seconds);
 }
 
+// An LCP whose entries span 1e-300 to 1e306 (found by a random search over such matrices):
+// the sparse path's basis loses all accuracy after a few pivots and x_B holds NaN. The
+// minimum-ratio test then has no finite ratio; it used to take the front of an empty
+// candidate list (a crash, first seen on a 20-body pile's LCP). Expected: a clear
+// numerical_error status naming the non-finite ratio, never a crash.
+TEST(LemkeSparse, NonFiniteRatiosGiveAStatusNotACrash) {
+  const double d[6][6] = {
+      {0x1.c1dae06de523fp-3, -0x1.c966b6da2a7bep+1017, -0x1.f2a09894311f5p+1013, -0x1.72f49297f8042p+1015,
+       0x1.70ac1fe2626a9p-998, -0x1.29674fec0dcc6p-998},
+      {-0x1.becb9584896e4p-3, -0x1.c606162d18d82p+0, 0x1.572282765086dp-998, -0x1.41d664e841856p+1016,
+       -0x1.cf9f72ff6f00ep-998, 0x1.7fd5ee8b2fb4ap+1016},
+      {-0x1.0212e70886145p+1012, -0x1.51972b85f07ep-4, 0x1.2836234106fc5p-1, -0x1.a81489313283bp-4,
+       0x1.05af2841fc50ep-999, 0x1.04634763bbbf9p+1},
+      {0x1.d0799b5685787p-999, -0x1.61ff59a826462p-996, -0x1.4d5abe918ecf8p+1017, 0x1.991167226f54cp-1,
+       -0x1.5792ff03c3973p-2, 0x1.d9881f0c0e08ap-998},
+      {0x1.0722762689162p+1017, 0x1.9c01d5c42957ep-999, -0x1.2d79f13b6a815p+1016, -0x1.f8c88b3612efap-2,
+       0x1.27b17290e8669p-999, 0x1.4790a90d13edap+0},
+      {-0x1.d03fc62247475p-1002, -0x1.efbbeaa122e62p+1013, -0x1.9f074875618dp-2, -0x1.54ebae4978dfp+1016,
+       0x1.9fd90a718d7e6p+1016, 0x1.e965364a38c61p-1}};
+  const double qv[6] = {0x1.0a5d70c6e5698p-4,  -0x1.4252edfcbca4dp-1, 0x1.0c44861e00a4dp-1,
+                        -0x1.bdf15a4dbea7bp-4, 0x1.4dd502abe9d0fp-3,  0x1.76fcc8782159ap-1};
+  DenseMatrix D(6, 6);
+  Vector q(6);
+  for (int i = 0; i < 6; ++i) {
+    q(i) = qv[i];
+    for (int j = 0; j < 6; ++j) D(i, j) = d[i][j];
+  }
+  const SparseMatrix M = D.sparseView();
+  const LcpResult r = solve(M, q, with(LemkeMethod::sparse));
+  EXPECT_NE(r.info.status, LcpStatus::solved);
+  EXPECT_NE(r.info.message.find("non-finite ratio"), std::string::npos) << r.info.message;
+}
+
 }  // namespace
 }  // namespace lcprelax
