@@ -4,8 +4,9 @@
 
 #include <lcprelax/learn/relaxed_lcp.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/cholmod_llt.hpp>
 #include <lcprelax/sparse/errors.hpp>
+
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <chrono>
@@ -94,8 +95,13 @@ struct RelaxedLcpSolver::Impl {
   QpSolver qp;
   bool qp_ready = false;
   QpProblem prob;
-  sparse::CholmodLlt llt;
-  SparseMatrix llt_pattern;
+  // The convexity test only needs to know whether LLᵀ exists: Eigen's simplicial LLᵀ (no
+  // OpenMP, no BLAS). CHOLMOD's supernodal LLᵀ, used before, entered a serialized OpenMP
+  // region per supernode even on these tiny matrices, and each region's end barrier is a
+  // futex syscall: 8 per block sample, 74 per polygon sample (strace), in every thread.
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Upper> llt;
+  SparseMatrix llt_matrix;   // H + τI (storage reused between samples)
+  SparseMatrix llt_pattern;  // pattern of the last analysis
   bool llt_ready = false;
   RelaxedLcpData data;  // copy of the last sample (for the adjoint check)
   RelaxedLcpResult res;
@@ -171,17 +177,20 @@ struct RelaxedLcpSolver::Impl {
 
   // LLᵀ of H + τI (τ tiny: a PSD but singular H passes); true if it succeeds.
   bool positive_definite() {
-    SparseMatrix H = prob.P;
+    llt_matrix = prob.P;
+    SparseMatrix& H = llt_matrix;
     const double tau = 1e-10 * std::max(1.0, hessian_norm());
     for (Index i = 0; i < H.rows(); ++i) H.coeffRef(i, i) += tau;
     if (!llt_ready || llt_pattern.rows() != H.rows() || llt_pattern.nonZeros() != H.nonZeros() ||
         !std::equal(H.innerIndexPtr(), H.innerIndexPtr() + H.nonZeros(), llt_pattern.innerIndexPtr()) ||
         !std::equal(H.outerIndexPtr(), H.outerIndexPtr() + H.cols() + 1, llt_pattern.outerIndexPtr())) {
-      if (!llt.analyze(H).ok()) return false;
+      llt.analyzePattern(H);
+      if (llt.info() != Eigen::Success) return false;
       llt_pattern = H;
       llt_ready = true;
     }
-    return llt.factorize(H).ok();
+    llt.factorize(H);
+    return llt.info() == Eigen::Success;  // NumericalIssue: a pivot ≤ 0
   }
 
   double hessian_norm() const {
