@@ -71,6 +71,10 @@ void QpSolver::update(const QpProblem& problem) {
   impl_->setup_seconds = seconds_since(t0);
 }
 
+bool QpSolver::can_update(const QpProblem& problem) const {
+  return impl_->is_setup && problem.same_pattern(impl_->problem);
+}
+
 void QpSolver::warm_start(const Vector& x, const Vector& y, const Vector& z, const Vector& z_bounds) {
   const QpProblem& p = impl_->problem;
   if (x.size() != p.num_variables() || y.size() != p.num_equalities() || z.size() != p.num_inequalities() ||

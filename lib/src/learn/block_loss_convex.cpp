@@ -33,7 +33,12 @@ class BlockConvexObjective final : public BlockObjective {
     const Theta th = read_theta(theta);
     const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];
     BlockLossTimings& timer = timing(thread);
-    ConvexWorkspace& ws = *workspaces_[static_cast<std::size_t>(thread)];
+    std::unique_ptr<ConvexWorkspace>& slot = workspaces_[static_cast<std::size_t>(thread)];
+    if (!slot) {  // on its thread (block_losses.hpp)
+      slot = std::make_unique<ConvexWorkspace>();
+      slot->solver.set_settings(settings_.qp);
+    }
+    ConvexWorkspace& ws = *slot;
     const double rho = settings_.convex_rho;
     const auto t0 = Clock::now();
     const Block1d block{th.mass, th.mg, th.mu};
@@ -78,10 +83,7 @@ class BlockConvexObjective final : public BlockObjective {
 
  protected:
   void make_workspaces(int threads) override {
-    while (workspaces_.size() < static_cast<std::size_t>(threads)) {
-      workspaces_.push_back(std::make_unique<ConvexWorkspace>());
-      workspaces_.back()->solver.set_settings(settings_.qp);
-    }
+    if (workspaces_.size() < static_cast<std::size_t>(threads)) workspaces_.resize(static_cast<std::size_t>(threads));
     if (warm_.size() != data_.samples.size()) warm_.assign(data_.samples.size(), ConvexWarm());
   }
 

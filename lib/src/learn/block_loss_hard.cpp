@@ -24,7 +24,9 @@ class BlockHardObjective final : public BlockObjective {
     const Theta th = read_theta(theta);
     const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];
     BlockLossTimings& timer = timing(thread);
-    LemkeSolver& solver = *solvers_[static_cast<std::size_t>(thread)];
+    std::unique_ptr<LemkeSolver>& slot = solvers_[static_cast<std::size_t>(thread)];
+    if (!slot) slot = std::make_unique<LemkeSolver>(settings_.lemke);  // on its thread (block_losses.hpp)
+    LemkeSolver& solver = *slot;
     const auto t0 = Clock::now();
     const Block1d block{th.mass, th.mg, th.mu};
     const Block1dLcp lcp = block1d_lcp(block, tr.v, tr.u);
@@ -66,8 +68,7 @@ class BlockHardObjective final : public BlockObjective {
 
  protected:
   void make_workspaces(int threads) override {
-    while (solvers_.size() < static_cast<std::size_t>(threads))
-      solvers_.push_back(std::make_unique<LemkeSolver>(settings_.lemke));
+    if (solvers_.size() < static_cast<std::size_t>(threads)) solvers_.resize(static_cast<std::size_t>(threads));
     if (warm_.size() != data_.samples.size()) warm_.assign(data_.samples.size(), {});
   }
 

@@ -23,7 +23,9 @@ class BlockRelaxedObjective final : public BlockObjective {
     const Theta th = read_theta(theta);
     const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];
     BlockLossTimings& timer = timing(thread);
-    RelaxedLcpSolver& solver = *solvers_[static_cast<std::size_t>(thread)];
+    std::unique_ptr<RelaxedLcpSolver>& slot = solvers_[static_cast<std::size_t>(thread)];
+    if (!slot) slot = std::make_unique<RelaxedLcpSolver>(settings_.relaxed, settings_.qp);  // on its thread
+    RelaxedLcpSolver& solver = *slot;
     const auto t0 = Clock::now();
     const double w = 1.0 / th.mass;
     const Block1dLcp lcp = block1d_lcp(Block1d{th.mass, th.mg, th.mu}, tr.v, tr.u);
@@ -76,8 +78,7 @@ class BlockRelaxedObjective final : public BlockObjective {
 
  protected:
   void make_workspaces(int threads) override {
-    while (solvers_.size() < static_cast<std::size_t>(threads))
-      solvers_.push_back(std::make_unique<RelaxedLcpSolver>(settings_.relaxed, settings_.qp));
+    if (solvers_.size() < static_cast<std::size_t>(threads)) solvers_.resize(static_cast<std::size_t>(threads));
     if (warm_.size() != data_.samples.size()) warm_.assign(data_.samples.size(), RelaxedLcpResult());
   }
 

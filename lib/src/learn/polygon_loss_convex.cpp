@@ -1,6 +1,7 @@
 // The convex two-phase loss of a polygon sample, with the deviation penalty, gradient by
 // QpSolver::backward through both phases (polygon_losses.hpp).
 #include "elapsed.hpp"
+#include "polygon_solvers.hpp"
 
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/learn/polygon_lcp.hpp>
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace lcprelax::learn {
 namespace {
@@ -94,7 +96,8 @@ void store(const QpResult& r, Vector& x, Vector& y, Vector& z, Vector& zb) {
 }  // namespace
 
 SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target_v, double dt,
-                                 const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times) {
+                                 const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times,
+                                 PolygonSolvers* solvers) {
   const Index np = static_cast<Index>(a.tangent.size()), nc = a.value.num_contacts();
   const Vector target(target_v);
   const double w = settings.convex_deviation, rho = settings.convex_rho;
@@ -134,8 +137,11 @@ SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target_v,
   times.assembly += since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  QpSolver s1(settings.qp), s2(settings.qp);
-  s1.setup(p1);
+  std::unique_ptr<PolygonSolvers> local;
+  if (!solvers) local = std::make_unique<PolygonSolvers>(settings);
+  QpSolver& s1 = solvers ? solvers->phase1 : local->phase1;
+  QpSolver& s2 = solvers ? solvers->phase2 : local->phase2;
+  setup_or_update(s1, p1);
   if (settings.warm_start && warm.x1.size() == nc) s1.warm_start(warm.x1, warm.y1, warm.z1, warm.zb1);
   const QpResult& r1 = s1.solve();
   if (!accepted(r1.info.status)) {
@@ -149,7 +155,7 @@ SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target_v,
   bool ok2 = false;
   for (double slack : kKappaSlack) {
     p2.u(nc) = kappa * (1.0 + slack) + 1e-12;
-    s2.setup(p2);
+    setup_or_update(s2, p2);
     if (settings.warm_start && warm.x2.size() == n && slack == kKappaSlack[0])
       s2.warm_start(warm.x2, warm.y2, warm.z2, warm.zb2);
     if (accepted(s2.solve().info.status)) {

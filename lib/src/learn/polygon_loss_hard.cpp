@@ -1,12 +1,14 @@
 // The hard loss of a polygon sample: Lemke on the Stewart–Trinkle LCP, gradient by
 // LemkeSolver::backward chained through the LCP's tangents (polygon_losses.hpp).
 #include "elapsed.hpp"
+#include "polygon_solvers.hpp"
 
 #include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/learn/polygon_losses.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
 #include <chrono>
+#include <memory>
 
 namespace lcprelax::learn {
 namespace {
@@ -16,7 +18,8 @@ using detail::since;
 }  // namespace
 
 SampleResult polygon_hard_loss(const PolygonAssembly& a, const Vec3& target, double dt,
-                               const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times) {
+                               const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times,
+                               PolygonSolvers* solvers) {
   const Index np = static_cast<Index>(a.tangent.size());
   SampleResult r;
   r.gradient = Vector::Zero(np);
@@ -25,7 +28,9 @@ SampleResult polygon_hard_loss(const PolygonAssembly& a, const Vec3& target, dou
   polygon_lcp(a.value, dt, lcp);
   const Index n = static_cast<Index>(lcp.q.size());
   Vector z = Vector::Zero(n);
-  LemkeSolver solver(settings.lemke);
+  std::unique_ptr<LemkeSolver> local;
+  if (!solvers) local = std::make_unique<LemkeSolver>(settings.lemke);
+  LemkeSolver& solver = solvers ? solvers->lemke : *local;
   times.assembly += since(t0);
   t0 = std::chrono::steady_clock::now();
   if (n > 0) {

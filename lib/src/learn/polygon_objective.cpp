@@ -1,5 +1,7 @@
 // The polygon learning Objective and the method settings (polygon_objective.hpp,
 // polygon_losses.hpp).
+#include "polygon_solvers.hpp"
+
 #include <lcprelax/learn/polygon_objective.hpp>
 #include <lcprelax/sparse/errors.hpp>
 
@@ -42,8 +44,9 @@ std::string PolygonLossSettings::validation_error() const {
 }
 
 struct PolygonObjective::Workspace {
-  explicit Workspace(const PolygonLossSettings& s) : relaxed(s.relaxed, s.qp) {}
+  explicit Workspace(const PolygonLossSettings& s) : relaxed(s.relaxed, s.qp), solvers(s) {}
   RelaxedLcpSolver relaxed;
+  PolygonSolvers solvers;
   PolygonAssembly assembly;
   PolygonLossTimes times;
 };
@@ -63,13 +66,17 @@ Index PolygonObjective::num_samples() const { return static_cast<Index>(data_.tr
 
 void PolygonObjective::prepare(const ParameterSet& /*theta*/, int threads) {
   const int t = resolve_threads(threads);
-  while (static_cast<int>(workspaces_.size()) < t) workspaces_.push_back(std::make_unique<Workspace>(settings_));
+  // Each workspace is made by its thread on its first sample (evaluate): its memory then
+  // comes from that thread's malloc arena and shares no cache line with another thread's.
+  if (static_cast<int>(workspaces_.size()) < t) workspaces_.resize(static_cast<std::size_t>(t));
 }
 
 SampleResult PolygonObjective::evaluate(Index sample, const ParameterSet& theta, int thread) {
   if (thread < 0 || thread >= static_cast<int>(workspaces_.size()))
     throw std::logic_error("PolygonObjective::evaluate: prepare() was not called for this thread count");
-  Workspace& ws = *workspaces_[static_cast<std::size_t>(thread)];
+  std::unique_ptr<Workspace>& slot = workspaces_[static_cast<std::size_t>(thread)];
+  if (!slot) slot = std::make_unique<Workspace>(settings_);
+  Workspace& ws = *slot;
   const PolygonTransition& s = data_.transitions[static_cast<std::size_t>(sample)];
   const auto t0 = std::chrono::steady_clock::now();
   const PolygonModel model = polygon_model(theta);
@@ -83,10 +90,10 @@ SampleResult PolygonObjective::evaluate(Index sample, const ParameterSet& theta,
     previous = vertices;
   }
   switch (settings_.method) {
-    case PolygonMethod::hard: return polygon_hard_loss(ws.assembly, s.v_next, data_.dt, settings_, warm, ws.times);
+    case PolygonMethod::hard: return polygon_hard_loss(ws.assembly, s.v_next, data_.dt, settings_, warm, ws.times, &ws.solvers);
     case PolygonMethod::relaxed:
       return polygon_relaxed_loss(ws.assembly, s.v_next, data_.dt, settings_, ws.relaxed, warm, ws.times);
-    case PolygonMethod::convex: return polygon_convex_loss(ws.assembly, s.v_next, data_.dt, settings_, warm, ws.times);
+    case PolygonMethod::convex: return polygon_convex_loss(ws.assembly, s.v_next, data_.dt, settings_, warm, ws.times, &ws.solvers);
   }
   throw std::logic_error("PolygonObjective: unknown method");
 }
@@ -94,6 +101,7 @@ SampleResult PolygonObjective::evaluate(Index sample, const ParameterSet& theta,
 PolygonLossTimes PolygonObjective::times() const {
   PolygonLossTimes sum;
   for (const auto& w : workspaces_) {
+    if (!w) continue;
     sum.assembly += w->times.assembly;
     sum.solve += w->times.solve;
     sum.backward += w->times.backward;
@@ -103,7 +111,8 @@ PolygonLossTimes PolygonObjective::times() const {
 }
 
 void PolygonObjective::reset_times() {
-  for (auto& w : workspaces_) w->times = PolygonLossTimes();
+  for (auto& w : workspaces_)
+    if (w) w->times = PolygonLossTimes();
 }
 
 void PolygonObjective::reset_warm_starts() {

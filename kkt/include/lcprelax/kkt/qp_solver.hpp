@@ -60,6 +60,9 @@ class QpSolver {
   /// New values with the same sparsity pattern: reuses ordering and analysis.
   /// Throws InputError if the pattern or sizes differ or the data are invalid.
   void update(const QpProblem& problem);
+  /// True if setup() was done and `problem` has its sizes and sparsity pattern (the
+  /// pattern test of update(), without an exception when it fails).
+  bool can_update(const QpProblem& problem) const;
   /// Starts the next solve() from this point (sizes n, me, mi, n); a poor guess is
   /// pushed into the interior, so any finite values are safe.
   void warm_start(const Vector& x, const Vector& y, const Vector& z, const Vector& z_bounds);

@@ -27,8 +27,10 @@
 //          The bound is inactive where the prediction sticks, so this loss has the same
 //          zero gradient in μ there as the hard one.
 //
-// Workspaces: one solver per thread (prepare() sizes them), so symbolic analyses are done
-// once per thread; per-sample warm starts (Lemke basis; QP solution only if asked, see
+// Workspaces: one solver per thread (prepare() sizes the list; each is made by the thread
+// that uses it, on its first sample, so that its memory comes from that thread's malloc
+// arena and never shares a cache line with another thread's solver), so symbolic analyses
+// are done once per thread; per-sample warm starts (Lemke basis; QP solution only if asked, see
 // BlockLossSettings) from the previous evaluation of the same sample. Evaluation of a sample does not depend on which thread
 // runs it, so 1 and N threads give bitwise-identical results (batch.hpp).
 #include <lcprelax/kkt/qp_settings.hpp>

@@ -90,14 +90,23 @@ struct PolygonLossTimes {
   long samples = 0;
 };
 
+/// Solvers kept between the samples one thread evaluates (polygon_solvers.hpp, internal):
+/// Lemke (hard) and the two phases' QpSolvers (convex), whose symbolic analyses are reused
+/// (QpSolver::update) while the sparsity pattern repeats.
+struct PolygonSolvers;
+
 /// Per-sample losses for the assembled data `a` (value and tangents) and target v̄.
-/// `warm` is read and updated when settings.warm_start.
+/// `warm` is read and updated when settings.warm_start. `solvers` (hard, convex): a
+/// thread's workspace made with settings (PolygonObjective's), or null for solvers local
+/// to the call; either gives the same result bit for bit.
 SampleResult polygon_hard_loss(const PolygonAssembly& a, const Vec3& target, double dt,
-                               const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times);
+                               const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times,
+                               PolygonSolvers* solvers = nullptr);
 SampleResult polygon_relaxed_loss(const PolygonAssembly& a, const Vec3& target, double dt,
                                   const PolygonLossSettings& settings, RelaxedLcpSolver& solver,
                                   PolygonWarmStart& warm, PolygonLossTimes& times);
 SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target, double dt,
-                                 const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times);
+                                 const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times,
+                                 PolygonSolvers* solvers = nullptr);
 
 }  // namespace lcprelax::learn
