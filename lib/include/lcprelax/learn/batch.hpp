@@ -9,6 +9,11 @@
 // for 1 and N threads: losses and gradients are bitwise identical (tests/learn_batch_test).
 // A sample whose evaluation fails (ok = false, or f throws) is counted in `failed` and left
 // out of the sums; its message is kept in first_failure.
+//
+// The per-sample result slots (one SampleResult with its gradient per sample) are kept by
+// the calling thread for its next call (thread_local), so that gradients are not freed
+// on the main thread after every batch (batch.cpp): memory of the order of n·(θ size)
+// doubles stays allocated per calling thread.
 #include <lcprelax/sparse/types.hpp>
 
 #include <functional>
