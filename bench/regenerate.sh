@@ -48,6 +48,7 @@ else
   echo "no PETSc/MPI build or no mpiexec: the 2-rank rows are skipped" >&2
 fi
 run "$B/run_learn_convergence" --csv "$R/learn_convergence.csv" > "$R/learn_convergence.txt"
-run "$B/run_learn_convergence" --problems polygon --polygon-data cli --csv "$R/learn_convergence_polygon_cli.csv" \
+run "$B/run_learn_convergence" --problems polygon --polygon-data cli --polygon-epochs 300 \
+  --csv "$R/learn_convergence_polygon_cli.csv" \
   > "$R/learn_convergence_polygon_cli.txt"
 run "$B/run_report_plots" --results "$R" --out "$R/plots"
