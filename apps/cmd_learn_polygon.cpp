@@ -70,17 +70,6 @@ struct LearnPolygonOptions {
   bool json = false;
 };
 
-learn::PolygonModel truth_model() {
-  learn::PolygonModel m;
-  Polygon p;
-  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-  m.shape = recentred(p);
-  m.mu = 0.4;
-  m.mass = 1.5;
-  m.inertia = 0.06;
-  return m;
-}
-
 Json values(const learn::ParameterSet& theta, bool learned_only) {
   Json j = Json::object();
   for (Index i = 0; i < theta.size(); ++i)
@@ -141,7 +130,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
                                                 learn::OptimizerSettings{}.momentum, o.json, o.log);
   t.optimizer.decay = o.lr_decay;
 
-  const learn::PolygonModel truth = truth_model();
+  const learn::PolygonModel truth = learn::reference_polygon_model();
   learn::PolygonDataSettings ds;
   ds.seed = o.seed;
   ds.noise = o.noise;

@@ -33,33 +33,22 @@ inline learn::BlockDataset block_dataset(Index samples, std::uint64_t seed = 1) 
   return learn::generate_block_dataset(s);
 }
 
-inline learn::PolygonModel polygon_truth() {
-  learn::PolygonModel m;
-  Polygon p;
-  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-  m.shape = recentred(p);
-  m.mu = 0.4;
-  m.mass = 1.5;
-  m.inertia = 0.06;
-  return m;
-}
-
 inline learn::PolygonDataset polygon_dataset(int trajectories, std::uint64_t seed) {
   learn::PolygonDataSettings s;
   s.trajectories = trajectories;
   s.steps = 60;
   s.seed = seed;
-  return learn::generate_polygon_dataset(polygon_truth(), s);
+  return learn::generate_polygon_dataset(learn::reference_polygon_model(), s);
 }
 
 /// Initial θ: the truth perturbed by `fraction` (default learn flags).
 inline learn::ParameterSet polygon_start(double fraction, std::uint64_t seed) {
   const learn::PolygonLearnFlags flags;
-  return learn::make_polygon_parameters(learn::perturb_polygon_model(polygon_truth(), flags, fraction, seed), flags);
+  return learn::make_polygon_parameters(learn::perturb_polygon_model(learn::reference_polygon_model(), flags, fraction, seed), flags);
 }
 
 inline learn::ParameterSet polygon_true_parameters() {
-  return learn::make_polygon_parameters(polygon_truth(), learn::PolygonLearnFlags{});
+  return learn::make_polygon_parameters(learn::reference_polygon_model(), learn::PolygonLearnFlags{});
 }
 
 /// Largest relative error over the learned parameters (polygon_relative_error).

@@ -12,6 +12,8 @@
 #include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
+#include "learn_polygon_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,16 +21,7 @@
 namespace lcprelax::learn {
 namespace {
 
-PolygonModel quad_model() {
-  PolygonModel m;
-  m.shape.vertices = {Vec2(-0.3, -0.2), Vec2(0.35, -0.22), Vec2(0.28, 0.25), Vec2(-0.32, 0.18)};
-  m.mu = 0.4;
-  m.mass = 1.7;
-  m.inertia = 0.09;
-  m.ground_height = 0.05;
-  m.ground_angle = 0.12;
-  return m;
-}
+using test::quad_model;
 
 PolygonTransition sample_near_ground(const PolygonModel& m, const Vec3& v) {
   PolygonTransition s;

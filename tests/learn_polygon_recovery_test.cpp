@@ -19,24 +19,13 @@
 namespace lcprelax::learn {
 namespace {
 
-PolygonModel truth_model() {
-  PolygonModel m;
-  Polygon p;
-  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-  m.shape = recentred(p);
-  m.mu = 0.4;
-  m.mass = 1.5;
-  m.inertia = 0.06;
-  return m;
-}
-
 struct Outcome {
   std::vector<double> errors;
   double truth_loss = 0.0, initial_loss = 0.0, final_loss = 0.0;
 };
 
 Outcome run(PolygonMethod method, int epochs, double lr) {
-  const PolygonModel truth = truth_model();
+  const PolygonModel truth = reference_polygon_model();
   PolygonDataSettings ds;
   ds.trajectories = 8;
   ds.steps = 60;

@@ -12,17 +12,6 @@
 namespace lcprelax::learn {
 namespace {
 
-PolygonModel truth_model() {
-  PolygonModel m;
-  Polygon p;
-  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
-  m.shape = recentred(p);
-  m.mu = 0.4;
-  m.mass = 1.5;
-  m.inertia = 0.06;
-  return m;
-}
-
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 bool same_bits(const Vector& a, const Vector& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
@@ -31,7 +20,7 @@ bool same_bits(const Vector& a, const Vector& b) {
 class LearnPolygonThreads : public ::testing::TestWithParam<PolygonMethod> {};
 
 TEST_P(LearnPolygonThreads, OneAndTwoThreadsAreBitwiseIdentical) {
-  const PolygonModel truth = truth_model();
+  const PolygonModel truth = reference_polygon_model();
   PolygonDataSettings ds;
   ds.trajectories = 3;
   ds.steps = 50;

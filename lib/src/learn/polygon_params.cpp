@@ -144,4 +144,15 @@ double polygon_relative_error(const ParameterSet& estimate, const ParameterSet& 
   return d / polygon_radius(polygon_model(truth).shape);
 }
 
+PolygonModel reference_polygon_model() {
+  PolygonModel m;
+  Polygon p;
+  p.vertices = {Vec2(-0.30, -0.22), Vec2(0.34, -0.18), Vec2(0.26, 0.24), Vec2(-0.22, 0.20)};
+  m.shape = recentred(p);
+  m.mu = 0.4;
+  m.mass = 1.5;
+  m.inertia = 0.06;
+  return m;
+}
+
 }  // namespace lcprelax::learn

@@ -42,6 +42,12 @@ struct PolygonModel {
   std::string validation_error() const;
 };
 
+/// The reference quadrilateral of `lcprelax learn polygon` (its ground truth), also used by
+/// the polygon tests and benchmarks: vertices (−0.30, −0.22), (0.34, −0.18), (0.26, 0.24),
+/// (−0.22, 0.20) m recentred on their centroid, μ = 0.4, mass 1.5 kg, inertia 0.06 kg·m²,
+/// ground y = 0 (h = 0, α = 0).
+PolygonModel reference_polygon_model();
+
 /// The ground half-plane of the model: normal (−sin α, cos α), offset h cos α.
 HalfPlane ground_half_plane(double height, double angle);
 
