@@ -27,6 +27,7 @@ constexpr int kStallIterations = 15;  // no 10% gain in the worst scaled residua
 constexpr int kSteadyIterations = 5;  // ... unless the residuals still gain 10% within 5 iterations
 constexpr double kDivergence = 1e13;  // scaled iterate norm taken as divergence
 constexpr double kRefinementFailure = 1e-8;  // relative K0 residual after refinement taken as failure
+constexpr double kConservativeSigma = 0.1;   // least centring of the conservative second attempt
 
 void fill_residuals(QpInfo& info, const detail::Residuals& r) {
   info.primal_residual = r.primal;
@@ -154,11 +155,16 @@ void QpSolver::Impl::run(QpInfo& info) {
     for (const detail::Side* s : it.sides())
       mu_aff += (s->s + a_aff * s->ds).dot(s->z + a_aff * s->dz);
     const Index N = it.num_constraints();
-    const double sigma = N > 0 && mu > 0 ? std::pow(std::clamp(mu_aff / N / mu, 0.0, 1.0), 3) : 0.0;
+    double sigma = N > 0 && mu > 0 ? std::pow(std::clamp(mu_aff / N / mu, 0.0, 1.0), 3) : 0.0;
+    if (conservative) sigma = std::max(sigma, kConservativeSigma);
 
-    // Corrector: s∘z + ds_aff∘dz_aff − σμ.
-    for (detail::Side* s : it.sides())
-      s->rc = (s->s.cwiseProduct(s->z) + s->ds.cwiseProduct(s->dz)).array() - sigma * mu;
+    // Corrector: s∘z + ds_aff∘dz_aff − σμ (conservative: s∘z − σμ, a plain centred step).
+    for (detail::Side* s : it.sides()) {
+      if (conservative)
+        s->rc = s->s.cwiseProduct(s->z).array() - sigma * mu;
+      else
+        s->rc = (s->s.cwiseProduct(s->z) + s->ds.cwiseProduct(s->dz)).array() - sigma * mu;
+    }
     info.refinement_steps += newton_step(rd, rp, dx, dy, dz);
     const double amax = it.max_step();
     const double alpha = std::min(1.0, settings.step_fraction * amax);
@@ -186,7 +192,35 @@ const QpResult& QpSolver::solve() {
   info.message.clear();
   info.kkt_form = m.kkt.form();
   info.kkt_backend = m.kkt.backend();
+  m.conservative = false;
   m.run(info);
+  if (info.status == QpStatus::numerical_error) {
+    // Mehrotra's corrector can cycle on degenerate problems (measured: relaxed-LCP QPs of the
+    // polygon loss whose μ alternates 4e-6 ↔ 2e-5 until "no progress"). One more run from
+    // the start, with σ ≥ 0.1 and no second-order term (a plain primal–dual path-following
+    // step), before the failure is reported; the first run's outcome is kept if it fails too.
+    const QpResult first_result = m.result;
+    const QpInfo first_info = info;
+    QpInfo second;
+    second.kkt_form = info.kkt_form;
+    second.kkt_backend = info.kkt_backend;
+    m.result = QpResult{};
+    m.conservative = true;
+    m.run(second);
+    m.conservative = false;
+    if (second.status == QpStatus::solved || second.status == QpStatus::solved_inaccurate) {
+      second.iterations += first_info.iterations;
+      second.refinement_steps += first_info.refinement_steps;
+      second.message = std::string(to_string(second.status)) + " by the conservative second run (first run: " +
+                       first_info.message + ")";
+      info = second;
+    } else {
+      m.result = first_result;
+      info = first_info;
+      info.iterations += second.iterations;
+      info.message += std::string("; conservative second run: ") + to_string(second.status);
+    }
+  }
   if (m.settings.infeasibility_lps &&
       (info.status == QpStatus::max_iterations || info.status == QpStatus::numerical_error)) {
     QpResult cert = m.result;

@@ -50,6 +50,9 @@ struct QpSolver::Impl {
     return detail::KktSystem::resolve_backend(settings.kkt_backend, form, settings.dense_max_kkt);
   }
   bool may_drop_row_regularization = true;  ///< false once a factorization with δ_g = 0 failed
+  /// Second attempt after a stalled Mehrotra run (qp_ipm_loop.cpp): centring σ ≥
+  /// kConservativeSigma and no second-order term in the corrector.
+  bool conservative = false;
   bool factorize(QpInfo& info);
   /// Newton step for the current rd, rp and side rc; returns refinement steps.
   int newton_step(const Vector& rd, const Vector& rp, Vector& dx, Vector& dy, Vector& dz);

@@ -15,6 +15,12 @@
 // and retries. Mehrotra, "On the implementation of a primal-dual interior point
 // method", SIAM J. Optim. 2(4), 1992; Wright, "Primal-Dual Interior-Point Methods", 1997.
 //
+// A run that stalls (numerical_error, e.g. "no progress in the residuals": Mehrotra's
+// corrector can cycle on degenerate problems) is repeated once from the start with a plain
+// centred path-following step (σ ≥ 0.1, no second-order correction); its result is kept
+// when it is solved (QpInfo::message says so, iterations count both runs), else the first
+// run's outcome is reported.
+//
 // Infeasibility is detected by certificates on the iterates (see qp_result.hpp), not by
 // running out of iterations.
 //
