@@ -192,7 +192,6 @@ const QpResult& QpSolver::solve() {
   info.message.clear();
   info.kkt_form = m.kkt.form();
   info.kkt_backend = m.kkt.backend();
-  m.conservative = false;
   m.run(info);
   if (info.status == QpStatus::numerical_error) {
     // Mehrotra's corrector can cycle on degenerate problems (measured: relaxed-LCP QPs of the

@@ -38,7 +38,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
     out.v_next = s.v_star;
     return out;
   }
-  const detail::ConvexModelData data(s, dt, formulation);
+  const detail::ConvexModelData data(s, bn, formulation);
 
   // Phase 1: frictionless normal impulses.
   const detail::ConvexPhaseQp p1 = detail::convex_phase1_qp(data);
@@ -59,10 +59,13 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // Phase 2: friction, bounded by κ, with the ρ·diag(exp(φ))·diag(Wnn) term on λn.
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, rho);
   QpResult r2;
+  QpSolver qp2(settings);
   for (double slack : kKappaSlack) {
     p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
-    QpSolver qp2(settings);
-    qp2.setup(p2.problem);
+    if (slack == kKappaSlack[0])
+      qp2.setup(p2.problem);
+    else
+      qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
     r2 = qp2.solve();
     out.work += r2.info.iterations;
     if (accepted(r2.info.status)) break;

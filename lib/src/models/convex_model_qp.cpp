@@ -65,9 +65,8 @@ ConvexFormulation resolve_convex_formulation(ConvexFormulation requested, const 
   return s.num_contacts() >= kLiftedMinContacts ? ConvexFormulation::lifted : ConvexFormulation::dual;
 }
 
-ConvexModelData::ConvexModelData(const ContactSystem& system, double dt, ConvexFormulation requested)
-    : s(system), form(resolve_convex_formulation(requested, system)) {
-  bn = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
+ConvexModelData::ConvexModelData(const ContactSystem& system, const Vector& bn_in, ConvexFormulation requested)
+    : s(system), form(resolve_convex_formulation(requested, system)), bn(bn_in) {
   const Index nc = s.num_contacts();
   w_nn = Vector::Zero(nc);
   for (Index j = 0; j < s.Jn.outerSize(); ++j)

@@ -38,7 +38,8 @@ ConvexFormulation resolve_convex_formulation(ConvexFormulation requested, const 
 
 /// What both phases of one island need.
 struct ConvexModelData {
-  ConvexModelData(const ContactSystem& system, double dt, ConvexFormulation form);
+  /// `bn` = Jn v* + max(φ, 0)/Δt, computed by the caller (it tests bn ≥ 0 first).
+  ConvexModelData(const ContactSystem& system, const Vector& bn, ConvexFormulation form);
   const ContactSystem& s;
   ConvexFormulation form;  ///< dual or lifted (resolved)
   Vector bn;               ///< Jn v* + max(φ, 0)/Δt (m/s)
