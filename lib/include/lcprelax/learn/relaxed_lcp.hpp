@@ -32,7 +32,7 @@
 // a1·PᵀP ⪰ 0, e.g. for the 1-D block (sym(M) = [[1,−1,0],[−1,1,0],[0,0,0]]/m ⪰ 0) and for
 // any LCP whose M has a PSD symmetric part. Stewart–Trinkle LCPs with a normal phase are
 // NOT of this kind in general (λᵀMλ contains μγλn, indefinite), so solve() checks H with
-// a CHOLMOD LLᵀ before the interior point:
+// a sparse LLᵀ (Eigen's simplicial, which fails on a pivot ≤ 0) before the interior point:
 //   - NonconvexPolicy::report (default): status nonconvex, no QP solve, c = NaN;
 //   - NonconvexPolicy::shift: H_λλ += δI with the smallest δ = 10ᵏ·max(ε, 1e-8)
 //     (k = 0, 1, …, 12) for which LLᵀ succeeds; δ is reported in Result::shift and the
