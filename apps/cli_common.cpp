@@ -1,8 +1,8 @@
 // JSON output helpers of the lcprelax command line (see cli_common.hpp).
 #include "cli_common.hpp"
 
-#include <lcprelax/sparse/errors.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <unistd.h>
 
@@ -56,7 +56,7 @@ learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, st
   t.optimizer.momentum = momentum;
   t.progress = !json && epochs > 0 && isatty(STDERR_FILENO);
   t.log_csv = log_csv;
-  t.distributed = sparse::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
+  t.distributed = mpi::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
   const std::string bad = t.validate();
   if (!bad.empty()) throw InputError("training settings: " + bad);
   return t;

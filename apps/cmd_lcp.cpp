@@ -12,7 +12,7 @@
 #include <lcprelax/lcp/fc2d_lcp.hpp>
 #include <lcprelax/lcp/lcp_ipm.hpp>
 #include <lcprelax/lcp/lemke.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <iostream>
 #include <memory>

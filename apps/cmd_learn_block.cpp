@@ -19,12 +19,12 @@
 // Exit 0 success, 1 when a sample's solve failed, 2 on bad input.
 #include "cli_common.hpp"
 
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <lcprelax/learn/block_landscape.hpp>
 #include <lcprelax/learn/block_losses.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 
 #include <cmath>
@@ -149,7 +149,7 @@ int run_learn_block(const LearnBlockOptions& o) {
   const learn::BatchResult final_eval = learn::evaluate_mean(*objective, theta, all, o.threads, t.distributed);
   failed += final_eval.failed;
   const double seconds = clock.seconds();
-  if (!o.landscape.empty() && sparse::mpi_rank() == 0) run_landscape(o, data, s, true_mu);
+  if (!o.landscape.empty() && mpi::mpi_rank() == 0) run_landscape(o, data, s, true_mu);
 
   Json j;
   j["method"] = learn::to_string(method);

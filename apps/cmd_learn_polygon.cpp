@@ -38,12 +38,12 @@
 // solve at the learned θ; 2 on bad input.
 #include "cli_common.hpp"
 
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_objective.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 
 #include <cmath>
@@ -156,7 +156,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
   const learn::BatchResult final_eval = learn::evaluate_mean(objective, theta, training, o.threads, t.distributed);
   const double seconds = clock.seconds();
   const learn::BatchResult final_validation = learn::evaluate_mean(objective, theta, validation, o.threads, t.distributed);
-  if (!o.plot.empty() && sparse::mpi_rank() == 0) write_plots(o.plot, result, true_theta, initial);
+  if (!o.plot.empty() && mpi::mpi_rank() == 0) write_plots(o.plot, result, true_theta, initial);
 
   Json j;
   j["method"] = learn::to_string(ls.method);

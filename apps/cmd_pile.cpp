@@ -16,7 +16,7 @@
 #include <lcprelax/scenes/picture.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <unistd.h>
 
@@ -58,10 +58,10 @@ int run_pile(const PileCliOptions& o) {
     scene = make_pile_scene(p);
   }
   scene.settings.model = parse_contact_model(o.model);
-  scene.settings.steps = o.steps;
+  scene.steps = o.steps;
   SimulatorSettings settings;
   settings.threads = o.threads;
-  Simulator sim(std::move(scene), settings);
+  Simulator sim = make_simulator(std::move(scene), settings);
 
   const bool progress = !o.json && isatty(STDERR_FILENO);
   const double e0 = sim.total_energy();
@@ -73,8 +73,8 @@ int run_pile(const PileCliOptions& o) {
   for (int k = 0; k < o.steps; ++k) {
     if (!o.export_fc2d.empty() && k + 1 == o.steps) {
       // the last step's contact problem, before it is solved
-      const std::vector<Contact> c = find_contacts(sim.world(), CollisionSettings{sim.scene().settings.margin});
-      const io::Fc2dData d = export_fc2d(sim.world(), c, sim.scene().settings.dt);
+      const std::vector<Contact> c = find_contacts(sim.world(), CollisionSettings{sim.settings().margin});
+      const io::Fc2dData d = export_fc2d(sim.world(), c, sim.settings().dt);
       io::write_siconos_fc2d(o.export_fc2d, d.W, d.q, d.mu);
     }
     const StepStats st = sim.step();

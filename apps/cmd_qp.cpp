@@ -8,7 +8,7 @@
 
 #include <lcprelax/io/qps_reader.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <cmath>
 #include <iomanip>

@@ -3,8 +3,8 @@
 // maps failures to exit codes: 0 solved, 1 solve failed, 2 bad input (message on stderr).
 #include "cli_common.hpp"
 
-#include <lcprelax/sparse/errors.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -28,10 +28,10 @@ int main(int argc, char** argv) {
   using namespace lcprelax::cli;
   // Under mpiexec: one MPI session for the whole run (data-parallel learning, the
   // distributed KKT backend); only rank 0 writes to stdout, so the JSON is printed once.
-  std::unique_ptr<lcprelax::sparse::MpiSession> mpi;
-  if (launched_by_mpiexec() && lcprelax::sparse::petsc_available()) {
-    mpi = std::make_unique<lcprelax::sparse::MpiSession>(&argc, &argv);
-    if (lcprelax::sparse::mpi_rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return kExitBadInput;
+  std::unique_ptr<lcprelax::mpi::MpiSession> mpi;
+  if (launched_by_mpiexec() && lcprelax::mpi::petsc_available()) {
+    mpi = std::make_unique<lcprelax::mpi::MpiSession>(&argc, &argv);
+    if (lcprelax::mpi::mpi_rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return kExitBadInput;
   }
   CLI::App app{"lcprelax: sparse QP / LCP solvers for many-contact systems"};
   app.require_subcommand(1);

@@ -2,7 +2,7 @@
 // (conventions and units in box2d_runner.hpp).
 #include "box2d_runner.hpp"
 
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <box2d/box2d.h>
 

@@ -72,7 +72,7 @@ struct SettleResult {
 /// `min_steps` steps are always taken (the bodies start at rest-ish speeds in the air).
 inline SettleResult settle_pile(Scene scene, const SimulatorSettings& settings, int min_steps, int max_steps,
                                 double speed_tol, double budget) {
-  Simulator sim(std::move(scene), settings);
+  Simulator sim = make_simulator(scene, settings);
   SettleResult r;
   const double e0 = sim.total_energy();
   double energy = e0;
@@ -96,7 +96,8 @@ inline SettleResult settle_pile(Scene scene, const SimulatorSettings& settings, 
     if (now_seconds() - t0 > budget) break;
   }
   r.seconds = now_seconds() - t0;
-  r.scene = sim.scene();
+  r.scene = std::move(scene);
+  r.scene.world = sim.world();
   return r;
 }
 
@@ -121,7 +122,7 @@ struct WindowStats {
 /// Times `steps` steps of `scene` after `warmup` untimed ones (see the file comment).
 inline WindowStats time_window(const Scene& scene, const SimulatorSettings& settings, int warmup, int steps,
                                double budget) {
-  Simulator sim(scene, settings);
+  Simulator sim = make_simulator(scene, settings);
   for (int k = 0; k < warmup; ++k) sim.step();
   WindowStats w;
   double total = 0.0, cpu = 0.0, contacts = 0.0, work = 0.0, collision = 0.0, solve = 0.0;

@@ -27,7 +27,7 @@
 
 #include <lcprelax/io/qps_reader.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -77,12 +77,12 @@ Row run(const Problem& p, KktBackend backend, int reps, double time_limit) {
   s.time_limit = time_limit;
   for (int k = 0; k < reps; ++k) {
     QpSolver solver(s);
-    sparse::mpi_barrier();
+    mpi::mpi_barrier();
     const double t0 = bench::now_seconds();
     try {
       solver.setup(p.qp);
       const QpInfo& info = solver.solve().info;
-      sparse::mpi_barrier();
+      mpi::mpi_barrier();
       const double wall = bench::now_seconds() - t0;
       if (wall < r.total) {
         r.total = wall, r.setup = info.setup_seconds, r.solve = info.solve_seconds, r.factor = info.factor_seconds;
@@ -104,7 +104,7 @@ Row run(const Problem& p, KktBackend backend, int reps, double time_limit) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  sparse::MpiSession session(&argc, &argv);
+  mpi::MpiSession session(&argc, &argv);
   CLI::App app{"KKT backends of the QP: CHOLMOD vs MUMPS (1 process, distributed)"};
   std::string data = "tests/data/maros_meszaros", csv;
   std::string problems = "CVXQP1_S,PRIMAL1,MOSARQP1,CONT-050,STCQP1,LISWET1,AUG2D";
@@ -122,14 +122,14 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv, "CSV output (rank 0)");
   app.add_flag("--append", append, "append rows to an existing CSV");
   CLI11_PARSE(app, argc, argv);
-  const int rank = sparse::mpi_rank(), ranks = sparse::mpi_size();
+  const int rank = mpi::mpi_rank(), ranks = mpi::mpi_size();
 
   std::vector<KktBackend> chosen;
   std::vector<Problem> set;
   try {
     for (const std::string& b : bench::split_list(backends)) {
       const KktBackend k = parse_backend(b);
-      if (k != KktBackend::cholmod && !sparse::petsc_available()) {
+      if (k != KktBackend::cholmod && !mpi::petsc_available()) {
         if (rank == 0) std::fprintf(stderr, "built without PETSc: backend %s skipped\n", b.c_str());
         continue;
       }

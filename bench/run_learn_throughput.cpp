@@ -28,7 +28,7 @@
 #include "csv_table.hpp"
 #include "pile_timing.hpp"
 
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -57,26 +57,26 @@ struct Measurement {
 // Times evaluate_mean passes (collective over the ranks when distributed).
 Measurement time_passes(learn::Objective& objective, const learn::ParameterSet& theta,
                         const std::vector<Index>& samples, int threads, double min_time) {
-  const bool distributed = sparse::mpi_size() > 1;
+  const bool distributed = mpi::mpi_size() > 1;
   // Untimed first pass (workspaces, warm starts); its loss, from a fresh objective, is the
   // one compared across thread and rank counts (later passes depend on how many passes
   // warm-started them).
   const double first_loss = learn::evaluate_mean(objective, theta, samples, threads, distributed).loss;
-  sparse::mpi_barrier();
+  mpi::mpi_barrier();
   double t0 = bench::now_seconds();
   learn::BatchResult r = learn::evaluate_mean(objective, theta, samples, threads, distributed);
-  const std::vector<double> first = sparse::allgather({bench::now_seconds() - t0});
+  const std::vector<double> first = mpi::allgather({bench::now_seconds() - t0});
   const double slowest = *std::max_element(first.begin(), first.end());
   const int passes = std::max(1, std::min(10000, static_cast<int>(std::ceil(min_time / std::max(slowest, 1e-9)))));
   Measurement m;
-  sparse::mpi_barrier();
+  mpi::mpi_barrier();
   t0 = bench::now_seconds();
   int failed = 0;
   for (int k = 0; k < passes; ++k) {
     r = learn::evaluate_mean(objective, theta, samples, threads, distributed);
     failed += r.failed;
   }
-  sparse::mpi_barrier();
+  mpi::mpi_barrier();
   m.passes = passes;
   m.seconds_per_pass = (bench::now_seconds() - t0) / passes;
   m.failed = static_cast<double>(failed) / passes;
@@ -100,7 +100,7 @@ std::map<std::string, double> read_baselines(const std::string& csv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  sparse::MpiSession session(&argc, &argv);
+  mpi::MpiSession session(&argc, &argv);
   CLI::App app{"learning throughput: samples/s per method, threads and MPI ranks"};
   std::vector<int> thread_counts = {1, 2};
   double min_time = 1.0;
@@ -118,13 +118,13 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv, "CSV output (rank 0)");
   app.add_flag("--append", append, "append rows to an existing CSV");
   CLI11_PARSE(app, argc, argv);
-  if (check_mpi) return sparse::petsc_available() ? 0 : 1;
+  if (check_mpi) return mpi::petsc_available() ? 0 : 1;
   for (int t : thread_counts)
     if (t < 1) {
       std::fprintf(stderr, "--threads: every count must be >= 1\n");
       return 2;
     }
-  const int rank = sparse::mpi_rank(), ranks = sparse::mpi_size();
+  const int rank = mpi::mpi_rank(), ranks = mpi::mpi_size();
 
   struct Out {
     std::string problem, method;

@@ -41,7 +41,7 @@
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <CLI/CLI.hpp>
 

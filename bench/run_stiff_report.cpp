@@ -23,7 +23,7 @@
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -103,7 +103,7 @@ void dynamics_cases(std::vector<Row>& rows) {
   for (ContactModel model : {ContactModel::lcp, ContactModel::convex}) {
     const std::string m = to_string(model);
     for (double ratio : {1e3, 1e6}) {
-      Simulator sim(ground_scene({box(0.2, 0.2, 1.0, Vec3(-0.8, 0.1, 0.0)), box(0.2, 0.2, 1.0, Vec3(0.8, 0.1, 0.0)),
+      Simulator sim = make_simulator(ground_scene({box(0.2, 0.2, 1.0, Vec3(-0.8, 0.1, 0.0)), box(0.2, 0.2, 1.0, Vec3(0.8, 0.1, 0.0)),
                                   box(2.0, 0.2, ratio, Vec3(0.0, 0.3, 0.0))},
                                  0.5, 1e-2, model));
       const RunStats r = run(sim, 200);
@@ -115,7 +115,7 @@ void dynamics_cases(std::vector<Row>& rows) {
     {
       Scene s = ground_scene({box(1.0, 0.2, 1.0, Vec3(0.0, 0.1, 0.0))}, 0.0, 1e-2, model);
       s.world.bodies[0].velocity = Vec3(2.0, 0.0, 0.0);
-      Simulator sim(s);
+      Simulator sim = make_simulator(s);
       const RunStats r = run(sim, 500);
       const double v = sim.world().bodies[0].velocity.x();
       char detail[128];
@@ -128,7 +128,7 @@ void dynamics_cases(std::vector<Row>& rows) {
       SimulatorSettings settings;
       settings.convex_rho = 1e-9;
       settings.qp.eps_abs = 1e-11;
-      Simulator sim(s, settings);
+      Simulator sim = make_simulator(s, settings);
       const RunStats r = run(sim, 100);
       const double v = sim.world().bodies[0].velocity.norm();
       char detail[128];
@@ -136,7 +136,7 @@ void dynamics_cases(std::vector<Row>& rows) {
       rows.push_back({"friction", "mu = 1000 sticks", m, outcome(v < 1e-7, r), r.residual, r.seconds, detail});
     }
     for (double dt : {1e-5, 1e-4, 1e-3, 1e-2, 1e-1}) {
-      Simulator sim(ground_scene({box(1.0, 1.0, 1.0, Vec3(0.0, 0.5, 0.0))}, 0.5, dt, model));
+      Simulator sim = make_simulator(ground_scene({box(1.0, 1.0, 1.0, Vec3(0.0, 0.5, 0.0))}, 0.5, dt, model));
       const int steps = std::min(2000, static_cast<int>(std::lround(0.5 / dt)));
       const RunStats r = run(sim, steps);
       char name[64], detail[128];
@@ -145,10 +145,9 @@ void dynamics_cases(std::vector<Row>& rows) {
       rows.push_back({"time step", name, m, outcome(r.drift < 1e-6, r), r.residual, r.seconds, detail});
     }
     {
-      Simulator sim(make_pyramid_scene(20, 1.0, 0.5));
-      Scene s = sim.scene();
+      Scene s = make_pyramid_scene(20, 1.0, 0.5);
       s.settings.model = model;
-      Simulator pyramid(s);
+      Simulator pyramid = make_simulator(s);
       const int steps = model == ContactModel::lcp ? 20 : 2;
       const RunStats r = run(pyramid, steps);
       char detail[128];

@@ -133,7 +133,7 @@ void lcp_points(const std::string& dir, std::vector<Point>& out) {
 }
 
 std::vector<Vec3> simulate(const Scene& scene, const SimulatorSettings& settings, int steps, double& seconds) {
-  Simulator sim(scene, settings);
+  Simulator sim = make_simulator(scene, settings);
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < steps; ++k) sim.step();
   seconds = since(t0);

@@ -1,11 +1,12 @@
 # Install rules and the exported CMake package (find_package(lcprelax)).
 include(CMakePackageConfigHelpers)
-install(TARGETS lcprelax lcprelax_core lcprelax_kkt lcprelax_sparse lcprelax_warnings
+list(TRANSFORM LCPRELAX_LAYERS PREPEND lcprelax_ OUTPUT_VARIABLE _layer_targets)
+install(TARGETS lcprelax ${_layer_targets} lcprelax_warnings
   EXPORT lcprelaxTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(_module sparse kkt lib)
+foreach(_module IN LISTS LCPRELAX_LAYERS)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_module}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 set(_cfgdir ${CMAKE_INSTALL_LIBDIR}/cmake/lcprelax)

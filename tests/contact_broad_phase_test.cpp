@@ -5,7 +5,7 @@
 #include <lcprelax/contact/convex_shape.hpp>
 #include <lcprelax/contact/narrow_phase.hpp>
 #include <lcprelax/contact/polygon.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

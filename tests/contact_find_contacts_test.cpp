@@ -3,7 +3,7 @@
 // bodies, input validation, and a 2000-body pile.
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/contact/polygon.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

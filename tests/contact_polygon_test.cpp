@@ -3,7 +3,7 @@
 // shift, bit-for-bit centred polygons), world vertices and bounding boxes.
 #include <lcprelax/contact/aabb.hpp>
 #include <lcprelax/contact/polygon.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

@@ -22,15 +22,15 @@
 namespace lcprelax {
 namespace {
 
-// The largest island of `world` (contacts within the scene's margin).
-ContactSystem largest_island(const Scene& scene) {
-  const std::vector<Contact> contacts = find_contacts(scene.world, CollisionSettings{scene.settings.margin});
-  const std::vector<Island> islands = find_islands(scene.world, contacts);
+// The largest island of `world` (contacts within the settings' margin).
+ContactSystem largest_island(const World& world, const SimulatorSettings& settings) {
+  const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{settings.margin});
+  const std::vector<Island> islands = find_islands(world, contacts);
   EXPECT_FALSE(islands.empty());
   std::size_t big = 0;
   for (std::size_t i = 0; i < islands.size(); ++i)
     if (islands[i].contacts.size() > islands[big].contacts.size()) big = i;
-  return assemble_contact_system(scene.world, contacts, islands.at(big), scene.settings.dt);
+  return assemble_contact_system(world, contacts, islands.at(big), settings.dt);
 }
 
 void expect_same_solution(const ContactSolution& a, const ContactSolution& b, const ContactSystem& s) {
@@ -62,18 +62,18 @@ Solved solve_all(const ContactSystem& s, double dt) {
 }
 
 TEST(ConvexFormulation, PileIslandAgreesAndAutomaticIsLifted) {
-  Simulator sim(test::closed_pile(40, 3, ContactModel::convex));
+  Simulator sim = make_simulator(test::closed_pile(40, 3, ContactModel::convex));
   for (int k = 0; k < 80; ++k) sim.step();
-  const ContactSystem s = largest_island(sim.scene());
+  const ContactSystem s = largest_island(sim.world(), sim.settings());
   ASSERT_GE(s.num_contacts(), kLiftedMinContacts);
-  const Solved r = solve_all(s, sim.scene().settings.dt);
+  const Solved r = solve_all(s, sim.settings().dt);
   expect_same_solution(r.dual, r.lifted, s);
   expect_bitwise(r.automatic, r.lifted);
 }
 
 TEST(ConvexFormulation, BoxStackAgreesAndAutomaticIsDual) {
   const Scene scene = test::scene_with(test::box_stack(10), 0.5, 1e-2, ContactModel::convex);
-  const ContactSystem s = largest_island(scene);
+  const ContactSystem s = largest_island(scene.world, scene.settings);
   ASSERT_EQ(s.num_contacts(), 20);
   ASSERT_LT(s.num_contacts(), kLiftedMinContacts);
   const Solved r = solve_all(s, scene.settings.dt);
@@ -86,7 +86,7 @@ TEST(ConvexFormulation, BoxStackAgreesAndAutomaticIsDual) {
 TEST(ConvexFormulation, SlidingBoxOnInclineAgrees) {
   const double angle = test::kPi / 6.0, mu = 0.3, dt = 1e-2;
   const Scene scene = test::incline_scene(angle, mu, dt, ContactModel::convex);
-  const ContactSystem s = largest_island(scene);
+  const ContactSystem s = largest_island(scene.world, scene.settings);
   const Solved r = solve_all(s, dt);
   expect_same_solution(r.dual, r.lifted, s);
   // Sliding: speed along the slope g(sin α − μ cos α)Δt after one step from rest.
@@ -99,7 +99,7 @@ TEST(ConvexFormulation, HeavyBoxOnSmallBoxesAgrees) {
                                    test::box(0.2, 0.2, 1.0, Vec3(0.4, 0.1, 0.0)),
                                    test::box(1.2, 0.2, 1000.0, Vec3(0.0, 0.3, 0.0))};
   const Scene scene = test::scene_with(std::move(bodies), 0.5, 1e-2, ContactModel::convex);
-  const ContactSystem s = largest_island(scene);
+  const ContactSystem s = largest_island(scene.world, scene.settings);
   ASSERT_EQ(s.bodies.size(), 3u);
   const Solved r = solve_all(s, scene.settings.dt);
   expect_same_solution(r.dual, r.lifted, s);

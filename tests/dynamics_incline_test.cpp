@@ -28,7 +28,7 @@ TEST_P(Incline, SticksIffTanAlphaAtMostMuElseSlidesWithCoulombAcceleration) {
   SimulatorSettings settings;
   settings.convex_rho = 1e-9;
   settings.qp.eps_abs = 1e-11;  // the interior point to near machine accuracy
-  Simulator sim(test::incline_scene(angle, mu, dt, model), settings);
+  Simulator sim = make_simulator(test::incline_scene(angle, mu, dt, model), settings);
   const Vec2 down(-std::cos(angle), -std::sin(angle));  // the plane y = x·tan α rises to the right
   std::vector<double> speed;
   for (int k = 0; k < 100; ++k) {
@@ -52,7 +52,7 @@ TEST_P(Incline, SticksIffTanAlphaAtMostMuElseSlidesWithCoulombAcceleration) {
 // Default ρ = 1e-3: the block that friction should hold (tan 0.3 = 0.31 < μ = 0.6)
 // creeps downhill, slowly (measured 7.2e-5 m/s after 1 s); this pins the size of the effect.
 TEST(InclineConvexDefaultRho, RegularizationMakesAHeldBlockCreepSlowly) {
-  Simulator sim(test::incline_scene(0.3, 0.6, 1e-2, ContactModel::convex));
+  Simulator sim = make_simulator(test::incline_scene(0.3, 0.6, 1e-2, ContactModel::convex));
   for (int k = 0; k < 100; ++k) ASSERT_EQ(sim.step().failed_islands, 0);
   const double speed = sim.world().bodies[0].velocity.head<2>().norm();
   EXPECT_GT(speed, 1e-5);

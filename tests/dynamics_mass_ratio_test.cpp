@@ -41,7 +41,7 @@ class MassRatio : public ::testing::TestWithParam<std::tuple<ContactModel, doubl
 
 TEST_P(MassRatio, HeavyPlankOnSmallBoxesStaysAtRest) {
   const auto [model, ratio] = GetParam();
-  Simulator sim(test::scene_with({test::box(0.2, 0.2, 1.0, Vec3(-0.8, 0.1, 0.0)),
+  Simulator sim = make_simulator(test::scene_with({test::box(0.2, 0.2, 1.0, Vec3(-0.8, 0.1, 0.0)),
                                   test::box(0.2, 0.2, 1.0, Vec3(0.8, 0.1, 0.0)),
                                   test::box(2.0, 0.2, ratio, Vec3(0.0, 0.3, 0.0))},
                                  0.5, 1e-2, model));
@@ -75,7 +75,7 @@ class ExtremeFriction : public ::testing::TestWithParam<ContactModel> {};
 TEST_P(ExtremeFriction, FrictionlessBoxSlidesForeverWithoutEnergyGain) {
   Scene scene = test::scene_with({test::box(1.0, 0.2, 1.0, Vec3(0.0, 0.1, 0.0))}, 0.0, 1e-2, GetParam());
   scene.world.bodies[0].velocity = Vec3(2.0, 0.0, 0.0);
-  Simulator sim(scene);
+  Simulator sim = make_simulator(scene);
   const double e0 = sim.total_energy(), tol = GetParam() == ContactModel::lcp ? 1e-12 * e0 : 1e-8;
   double e = e0;
   for (int k = 0; k < 500; ++k) {
@@ -95,7 +95,7 @@ TEST_P(ExtremeFriction, MuOneThousandStopsASlidingBoxInOneStep) {
   SimulatorSettings settings;
   settings.convex_rho = 1e-9;
   settings.qp.eps_abs = 1e-11;
-  Simulator sim(scene, settings);
+  Simulator sim = make_simulator(scene, settings);
   const double tol = GetParam() == ContactModel::lcp ? 1e-9 : 1e-7;
   for (int k = 0; k < 100; ++k) {
     const StepStats st = sim.step();

@@ -40,8 +40,8 @@ double complementarity(const SparseMatrix& M, const Vector& q, const Vector& z) 
 }
 
 TEST(LemkeVsInteriorPoint, FrictionlessPileIslandsGiveTheSameVelocities) {
-  Simulator sim(test::closed_pile(30, 5, ContactModel::lcp, 0.0));
-  const double dt = sim.scene().settings.dt;
+  Simulator sim = make_simulator(test::closed_pile(30, 5, ContactModel::lcp, 0.0));
+  const double dt = sim.settings().dt;
   int compared = 0, degenerate = 0;
   double worst = 0.0;
   for (int k = 1; k <= 150; ++k) {
@@ -86,7 +86,7 @@ Vec3 pushed_box_velocity(ContactModel model, double force, int steps, double& ac
   SimulatorSettings settings;
   settings.convex_rho = 1e-9;
   settings.qp.eps_abs = 1e-11;
-  Simulator sim(test::scene_with({test::box(1.0, 0.2, 1.0, Vec3(0.0, 0.1, 0.0))}, 0.5, 1e-2, model), settings);
+  Simulator sim = make_simulator(test::scene_with({test::box(1.0, 0.2, 1.0, Vec3(0.0, 0.1, 0.0))}, 0.5, 1e-2, model), settings);
   const std::vector<Vec3> push = {Vec3(force, 0.0, 0.0)};
   double v10 = 0.0;
   for (int k = 1; k <= steps; ++k) {

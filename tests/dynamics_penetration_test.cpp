@@ -39,7 +39,7 @@ class TimeStep : public ::testing::TestWithParam<std::tuple<ContactModel, double
 
 TEST_P(TimeStep, RestingBoxStays) {
   const auto [model, dt] = GetParam();
-  Simulator sim(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.5, 0.0))}, 0.5, dt, model));
+  Simulator sim = make_simulator(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.5, 0.0))}, 0.5, dt, model));
   const std::vector<Vec3> start = test::poses(sim.world());
   const int steps = std::min(2000, static_cast<int>(std::lround(0.5 / dt)));
   for (int k = 0; k < steps; ++k) {
@@ -52,7 +52,7 @@ TEST_P(TimeStep, RestingBoxStays) {
 TEST_P(TimeStep, DroppedBoxLandsAndRests) {
   const auto [model, dt] = GetParam();
   const double h = 0.05, g = 9.81;
-  Simulator sim(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.5 + h, 0.0))}, 0.5, dt, model));
+  Simulator sim = make_simulator(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.5 + h, 0.0))}, 0.5, dt, model));
   const double landing = std::sqrt(2.0 * h / g);
   const int steps = std::max(static_cast<int>(std::ceil((landing + 0.1) / dt)), static_cast<int>(std::ceil(landing / dt)) + 2);
   double penetration = 0.0;
@@ -83,7 +83,7 @@ double ke_tol(ContactModel model) { return model == ContactModel::lcp ? 1e-12 : 
 class Overlap : public ::testing::TestWithParam<ContactModel> {};
 
 TEST_P(Overlap, SideBySideBoxesSeparateWithoutKineticEnergy) {
-  Simulator sim(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.5, 0.0)),
+  Simulator sim = make_simulator(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.5, 0.0)),
                                   test::box(1.0, 1.0, 1.0, Vec3(0.75, 0.5, 0.0))},
                                  0.5, 1e-2, GetParam()));
   EXPECT_NEAR(test::max_penetration(sim.world()), 0.25, 1e-12);
@@ -101,7 +101,7 @@ TEST_P(Overlap, SideBySideBoxesSeparateWithoutKineticEnergy) {
 }
 
 TEST_P(Overlap, SunkBoxRisesWithoutKineticEnergy) {
-  Simulator sim(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.25, 0.0))}, 0.5, 1e-2, GetParam()));
+  Simulator sim = make_simulator(test::scene_with({test::box(1.0, 1.0, 1.0, Vec3(0.0, 0.25, 0.0))}, 0.5, 1e-2, GetParam()));
   const double ke0 = sim.kinetic_energy(), pe0 = sim.potential_energy();
   for (int k = 0; k < 5; ++k) {
     const StepStats st = sim.step();

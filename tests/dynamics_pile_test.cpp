@@ -29,7 +29,7 @@ namespace {
 class ClosedPile : public ::testing::TestWithParam<ContactModel> {};
 
 TEST_P(ClosedPile, TotalEnergyNeverIncreases) {
-  Simulator sim(test::closed_pile(30, 7, GetParam()));
+  Simulator sim = make_simulator(test::closed_pile(30, 7, GetParam()));
   const double e0 = sim.total_energy();
   double e = e0, largest_gain = -1e300;
   int worst_step = -1, contacts_max = 0;
@@ -55,7 +55,7 @@ INSTANTIATE_TEST_SUITE_P(LcpAndConvex, ClosedPile, ::testing::Values(ContactMode
 World run(ContactModel model, int threads, int& islands_max) {
   SimulatorSettings settings;
   settings.threads = threads;
-  Simulator sim(test::closed_pile(30, 11, model), settings);
+  Simulator sim = make_simulator(test::closed_pile(30, 11, model), settings);
   islands_max = 0;
   for (int k = 0; k < 50; ++k) {
     const StepStats st = sim.step();

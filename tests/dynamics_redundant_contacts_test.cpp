@@ -88,7 +88,7 @@ TEST_P(CollinearVertex, BoxWithNearlyCollinearBottomVertexRests) {
   RigidBody body = make_body(p, 1.0, Vec3::Zero());
   // Rest the middle vertex on the ground (the centroid is slightly below the box centre).
   body.pose = Vec3(0.0, -world_vertices(body)[1].y(), 0.0);
-  Simulator sim(test::scene_with({body}, 0.5, kDt, GetParam()));
+  Simulator sim = make_simulator(test::scene_with({body}, 0.5, kDt, GetParam()));
   const std::vector<Vec3> start = test::poses(sim.world());
   for (int k = 0; k < 200; ++k) {
     const StepStats st = sim.step();

@@ -38,7 +38,7 @@ struct RestRun {
 };
 
 RestRun rest(std::vector<RigidBody> bodies, ContactModel model, int steps) {
-  Simulator sim(test::scene_with(std::move(bodies), 0.5, 1e-2, model));
+  Simulator sim = make_simulator(test::scene_with(std::move(bodies), 0.5, 1e-2, model));
   const std::vector<Vec3> start = test::poses(sim.world());
   RestRun out;
   for (int k = 0; k < steps; ++k) {
@@ -110,7 +110,7 @@ Scene three_columns() {
 }
 
 TEST(WarmStart, RestingColumnsAreWarmStartedWithZeroPivots) {
-  Simulator sim(three_columns());
+  Simulator sim = make_simulator(three_columns());
   const StepStats first = sim.step();
   ASSERT_EQ(first.islands, 3);
   EXPECT_EQ(first.warm_started_islands, 0);
@@ -127,7 +127,7 @@ TEST(WarmStart, RestingColumnsAreWarmStartedWithZeroPivots) {
 TEST(WarmStart, WithoutWarmStartsEveryStepPivots) {
   SimulatorSettings settings;
   settings.warm_start = false;
-  Simulator sim(three_columns(), settings);
+  Simulator sim = make_simulator(three_columns(), settings);
   for (int k = 0; k < 10; ++k) {
     const StepStats st = sim.step();
     ASSERT_EQ(st.failed_islands, 0) << st.first_failure;

@@ -10,7 +10,7 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/fc2d_export.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include "dynamics_support.hpp"
 

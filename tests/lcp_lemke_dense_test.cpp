@@ -1,7 +1,7 @@
 // Dense lexicographic Lemke: closed-form and classic LCPs, warm start, ray termination,
 // and the backward pass against central finite differences.
 #include <lcprelax/lcp/lemke.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

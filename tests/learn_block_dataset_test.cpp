@@ -5,7 +5,7 @@
 // seeds' layout with columns in any order reads; bad files are InputErrors that name the
 // line and the column.
 #include <lcprelax/learn/block_dataset.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 // - train() on a quadratic objective is reproducible (two runs, and 1 vs 2 threads, give
 //   bitwise-identical histories) and converges; invalid settings are InputErrors.
 #include <lcprelax/learn/trainer.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

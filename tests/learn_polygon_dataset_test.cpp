@@ -10,7 +10,7 @@
 //   kinds, and learn flags set Parameter::learn.
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_assembly.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 //   a reported diagonal shift (policy shift); bad data are InputErrors naming the field.
 #include <lcprelax/learn/relaxed_lcp.hpp>
 #include <lcprelax/models/block1d.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

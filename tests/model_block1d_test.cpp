@@ -4,7 +4,7 @@
 // sticking gives v⁺ = 0 and slipping |λ| = μmg with friction opposing the motion; with
 // ρ > 0 the convex model's sticking impulse shrinks by 1/(1+ρ); bad input is an InputError.
 #include <lcprelax/models/block1d.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

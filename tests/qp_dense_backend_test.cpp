@@ -14,7 +14,7 @@
 
 #include <lcprelax/io/qps_reader.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

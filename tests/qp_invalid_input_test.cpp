@@ -3,7 +3,7 @@
 // throws std::logic_error; the batch API reports invalid_input per problem instead.
 #include <lcprelax/kkt/qp_batch.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

@@ -152,10 +152,10 @@ TEST(QpMumpsBackend, ConvexContactModelOnAPileStepAgrees) {
   PileOptions o;
   o.bodies = 60;
   o.model = ContactModel::convex;
-  Simulator sim(make_pile_scene(o));
+  Simulator sim = make_simulator(make_pile_scene(o));
   for (int k = 0; k < 150; ++k) sim.step();  // fall and settle
   const World& world = sim.world();
-  const double dt = sim.scene().settings.dt;
+  const double dt = sim.settings().dt;
   const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{1e-2});
   int islands = 0, largest = 0;
   for (const Island& island : find_islands(world, contacts)) {

@@ -9,7 +9,7 @@
 //   except equality rows (l = u), which become c∘l = c∘u so that no row changes type.
 // The unique optimum of each problem is compared between solvers to 1e-7.
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include "random_qp_support.hpp"
 

@@ -2,7 +2,7 @@
 // right size; small hand-written files check RANGES, BOUNDS, QUADOBJ vs QMATRIX and the
 // objective constant; malformed files give InputError "FILE:LINE: ..." at the right line.
 #include <lcprelax/io/qps_reader.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

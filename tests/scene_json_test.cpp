@@ -5,7 +5,7 @@
 
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <cmath>
 #include <string>
@@ -89,7 +89,7 @@ TEST(SceneJson, BaseSceneHasTheDocumentedMeaning) {
   const Scene s = parse_scene(kBase);
   EXPECT_EQ(s.name, "base");
   EXPECT_EQ(s.settings.model, ContactModel::convex);
-  EXPECT_EQ(s.settings.steps, 10);
+  EXPECT_EQ(s.steps, 10);
   EXPECT_DOUBLE_EQ(s.settings.margin, 0.02);
   EXPECT_DOUBLE_EQ(s.world.friction.mu(1, 0), 0.9);
   EXPECT_DOUBLE_EQ(s.world.friction.mu(0, 0), 0.4);
@@ -116,8 +116,8 @@ TEST(SceneJson, BaseSceneHasTheDocumentedMeaning) {
 
 TEST(SceneJson, DefaultsForAnEmptyObject) {
   const Scene s = parse_scene("{}");
-  EXPECT_EQ(s.settings.dt, SimulationSettings{}.dt);
-  EXPECT_EQ(s.settings.steps, SimulationSettings{}.steps);
+  EXPECT_EQ(s.settings.dt, SimulatorSettings{}.dt);
+  EXPECT_EQ(s.steps, Scene{}.steps);
   EXPECT_EQ(s.settings.model, ContactModel::lcp);
   EXPECT_EQ(s.world.gravity, Vec2(0, -9.81));
   EXPECT_TRUE(s.world.bodies.empty());
@@ -132,7 +132,7 @@ TEST(SceneJson, WriteThenParseGivesTheSameScene) {
   const Scene b = parse_scene(text);
   EXPECT_EQ(b.name, a.name);
   EXPECT_EQ(b.settings.dt, a.settings.dt);
-  EXPECT_EQ(b.settings.steps, a.settings.steps);
+  EXPECT_EQ(b.steps, a.steps);
   EXPECT_EQ(b.settings.model, a.settings.model);
   EXPECT_EQ(b.settings.margin, a.settings.margin);
   expect_same(a.world, b.world);

@@ -3,7 +3,7 @@
 // has <svg and one path per series, the PNG starts with the PNG signature); bad input
 // (extension, mismatched lengths, size) is an InputError whether or not Cairo is present.
 #include <lcprelax/scenes/line_plot.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

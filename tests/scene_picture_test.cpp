@@ -5,7 +5,7 @@
 
 #include <lcprelax/scenes/picture.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <cmath>
 #include <filesystem>

@@ -6,7 +6,7 @@
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <lcprelax/scenes/trajectory_csv.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 #include <sstream>
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 // Matrix Market read/write: exact round trips, symmetric and skew-symmetric expansion,
 // pattern/integer/array files, and malformed files that must throw InputError naming
 // "path:line:".
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/sparse/matrix_market.hpp>
 
 #include <gtest/gtest.h>

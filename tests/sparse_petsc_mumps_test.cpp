@@ -12,7 +12,7 @@
 // ≤ 1e-12, and the next factorize() is in the static order again.
 // Without PETSc: analyze() returns invalid_input naming LCPRELAX_WITH_PETSC.
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 #include <lcprelax/sparse/petsc_mumps_ldlt.hpp>
 
 #include <gtest/gtest.h>
@@ -229,11 +229,11 @@ TEST(PetscMumpsLdlt, PivotedRefactorizationOfTheStaticOrderBackend) {
 }
 
 TEST(MpiSession, OneProcessWithoutMpiexec) {
-  lcprelax::sparse::ensure_petsc_initialized();
-  EXPECT_TRUE(lcprelax::sparse::petsc_available());
-  EXPECT_EQ(lcprelax::sparse::mpi_rank(), 0);
-  EXPECT_EQ(lcprelax::sparse::mpi_size(), 1);
-  EXPECT_EQ(lcprelax::sparse::allgather({1.0, 2.0}), (std::vector<double>{1.0, 2.0}));
+  lcprelax::mpi::ensure_petsc_initialized();
+  EXPECT_TRUE(lcprelax::mpi::petsc_available());
+  EXPECT_EQ(lcprelax::mpi::mpi_rank(), 0);
+  EXPECT_EQ(lcprelax::mpi::mpi_size(), 1);
+  EXPECT_EQ(lcprelax::mpi::allgather({1.0, 2.0}), (std::vector<double>{1.0, 2.0}));
 }
 
 #else
@@ -243,7 +243,7 @@ TEST(PetscMumpsLdlt, BuiltWithoutPetscSaysSo) {
   const auto r = mumps.analyze(kkt_upper(10, 5, 1));
   EXPECT_EQ(r.status, FactorStatus::invalid_input);
   EXPECT_NE(r.message.find("LCPRELAX_WITH_PETSC"), std::string::npos) << r.message;
-  EXPECT_FALSE(lcprelax::sparse::petsc_available());
+  EXPECT_FALSE(lcprelax::mpi::petsc_available());
 }
 
 #endif

@@ -18,7 +18,7 @@
 // thread schedule (tests/qp_backward_warm_start_test.cpp).
 #include "qp_solver_impl.hpp"
 
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <chrono>
 #include <stdexcept>

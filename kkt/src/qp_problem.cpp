@@ -1,6 +1,6 @@
 // QpProblem: construction, validation and small helpers (see qp_problem.hpp).
 #include <lcprelax/kkt/qp_problem.hpp>
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <cmath>
 #include <limits>

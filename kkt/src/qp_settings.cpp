@@ -1,6 +1,6 @@
 // QpSettings validation (see qp_settings.hpp).
 #include <lcprelax/kkt/qp_settings.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -27,7 +27,7 @@ std::string QpSettings::validation_error() const {
   if (os.str().empty() && !(step_fraction > 0 && step_fraction < 1))
     os << "step_fraction = " << step_fraction << " must be in (0, 1)";
   if (os.str().empty() && dense_max_kkt < 0) os << "dense_max_kkt = " << dense_max_kkt << " must be >= 0";
-  if (os.str().empty() && uses_petsc(kkt_backend) && !sparse::petsc_available())
+  if (os.str().empty() && uses_petsc(kkt_backend) && !mpi::petsc_available())
     os << "kkt_backend = " << to_string(kkt_backend)
        << " needs PETSc, but lcprelax was built with LCPRELAX_WITH_PETSC=OFF (or without PETSc found)";
   return os.str();

@@ -2,7 +2,7 @@
 // iterate equations in ipm_iterate.hpp).
 #include "qp_solver_impl.hpp"
 
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 
 #include <algorithm>
 #include <chrono>

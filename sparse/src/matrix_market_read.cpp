@@ -3,7 +3,7 @@
 // 1-based line number; nothing is read past the declared entries but blank lines.
 // Duplicate coordinate entries are summed; explicit zeros in coordinate files are kept
 // (they are part of the pattern), zeros of array files are dropped.
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/sparse/matrix_market.hpp>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Matrix Market writer: "coordinate real general" for sparse matrices and "array real
 // general" for vectors, with 17 significant digits so that reading back is exact.
 // Non-finite values are refused (the reader would reject the file).
-#include <lcprelax/sparse/errors.hpp>
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/sparse/matrix_market.hpp>
 
 #include <cmath>

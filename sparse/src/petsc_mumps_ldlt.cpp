@@ -1,5 +1,5 @@
 // MUMPS LDLᵀ through PETSc (petsc_mumps_ldlt.hpp).
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 #include <lcprelax/sparse/petsc_mumps_ldlt.hpp>
 
 #include "matrix_checks.hpp"
@@ -204,7 +204,7 @@ PetscMumpsLdlt::PetscMumpsLdlt(bool distributed, bool pivoting)
 PetscMumpsLdlt::~PetscMumpsLdlt() = default;
 
 FactorResult PetscMumpsLdlt::analyze(const SparseMatrix& A_in) {
-  ensure_petsc_initialized();
+  mpi::ensure_petsc_initialized();
   Impl& m = *impl_;
   m.destroy();
   m.pattern.clear();

@@ -7,7 +7,7 @@
 // rank also trains alone, distributed = false, and compares); each rank evaluated only
 // its shard (sample i on rank i mod 2: counted); the validation loss is the same too.
 #include <lcprelax/learn/trainer.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include "mpi_main.hpp"
 
@@ -50,7 +50,7 @@ ParameterSet initial() {
 }
 
 void check_same_as_one_process(OptimizerKind kind) {
-  ASSERT_EQ(sparse::mpi_size(), 2) << "run under mpiexec -n 2";
+  ASSERT_EQ(mpi::mpi_size(), 2) << "run under mpiexec -n 2";
   std::vector<Index> training, validation;
   split_samples(37, 0.2, 3, training, validation);
   TrainSettings settings;
@@ -70,7 +70,7 @@ void check_same_as_one_process(OptimizerKind kind) {
   const Vector td = distributed.values(), tl = local.values();
   EXPECT_EQ(std::memcmp(td.data(), tl.data(), 3 * sizeof(double)), 0) << td.transpose() << " vs " << tl.transpose();
   EXPECT_EQ(rd.history.back().validation_loss, rl.history.back().validation_loss);
-  const std::vector<double> both = sparse::allgather({td(0), td(1), td(2)});
+  const std::vector<double> both = mpi::allgather({td(0), td(1), td(2)});
   EXPECT_EQ(std::memcmp(both.data(), both.data() + 3, 3 * sizeof(double)), 0);
   // Sharding: each rank evaluated about half of what one process evaluates.
   EXPECT_LT(distributed_objective.evaluations.load(), local_objective.evaluations.load() * 3 / 4);

@@ -5,7 +5,7 @@
 // ≤ 1e-12, the solution is the same on both ranks (bitwise, it is gathered to all), it
 // equals the per-process (PETSC_COMM_SELF) factorization's to 1e-10, and the inertia is
 // (400, 150); a refactorization with new values on the same pattern solves the new matrix.
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 #include <lcprelax/sparse/petsc_mumps_ldlt.hpp>
 
 #include "mpi_main.hpp"
@@ -54,7 +54,7 @@ double residual(const SparseMatrix& U, const DenseMatrix& X, const DenseMatrix& 
 }
 
 TEST(DistributedMumps, SolvesOnTwoRanksLikeOneProcess) {
-  ASSERT_EQ(lcprelax::sparse::mpi_size(), 2) << "run under mpiexec -n 2";
+  ASSERT_EQ(lcprelax::mpi::mpi_size(), 2) << "run under mpiexec -n 2";
   const SparseMatrix U = kkt_upper(400, 150, 1.0);
   const DenseMatrix B = rhs(550);
   PetscMumpsLdlt distributed(true), local(false);
@@ -70,7 +70,7 @@ TEST(DistributedMumps, SolvesOnTwoRanksLikeOneProcess) {
 
   // The same on both ranks: gather rank 1's solution and compare bitwise.
   const std::vector<double> mine(X.data(), X.data() + X.size());
-  const std::vector<double> all = lcprelax::sparse::allgather(mine);
+  const std::vector<double> all = lcprelax::mpi::allgather(mine);
   EXPECT_EQ(std::memcmp(all.data(), all.data() + mine.size(), mine.size() * sizeof(double)), 0);
 
   ASSERT_TRUE(local.analyze(U).ok());

@@ -17,7 +17,7 @@
 // central finite differences (tests/qp_mumps_backend_test.cpp).
 #include <lcprelax/io/qps_reader.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/sparse/mpi_session.hpp>
+#include <lcprelax/mpi/mpi_session.hpp>
 
 #include "mpi_main.hpp"
 
@@ -33,7 +33,7 @@ io::QpsModel read(const char* name) {
 }
 
 TEST(DistributedMumpsQp, MarosMeszarosProblemsMatchCholmod) {
-  ASSERT_EQ(sparse::mpi_size(), 2) << "run under mpiexec -n 2";
+  ASSERT_EQ(mpi::mpi_size(), 2) << "run under mpiexec -n 2";
   for (const char* name : {"CVXQP1_S", "DUAL1", "QAFIRO", "HS118", "PRIMAL1"}) {
     SCOPED_TRACE(name);
     const io::QpsModel model = read(name);
@@ -54,7 +54,7 @@ TEST(DistributedMumpsQp, MarosMeszarosProblemsMatchCholmod) {
     EXPECT_LE(a.info.duality_gap, 1e-9);
     const double fa = model.problem.objective(a.x), fb = model.problem.objective(b.x);
     EXPECT_NEAR(fa, fb, 1e-8 * std::max(1.0, std::abs(fb)));
-    const std::vector<double> both = sparse::allgather({fa});
+    const std::vector<double> both = mpi::allgather({fa});
     EXPECT_EQ(both[0], both[1]);
     EXPECT_EQ(a.info.reg_primal, b.info.reg_primal);
 

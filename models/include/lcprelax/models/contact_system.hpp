@@ -1,0 +1,60 @@
+#pragma once
+// Islands of touching bodies and the sparse contact Jacobians of one island.
+//
+// Generalized velocity of an island: v = (vx, vy, ω) per dynamic body, in the order of
+// ContactSystem::bodies (3 columns per body; static bodies have no columns). The mass
+// matrix is diag(m, m, I) per body (vertices are centred on the centre of mass), so
+// M⁻¹ is the vector minv.
+//
+// Rows (DESIGN §1.4): for contact c with point p, unit normal n (from b to a) and tangent
+// t = (−n_y, n_x), the relative velocity of a with respect to b at p is
+//     u = v_a + ω_a × (p − x_a) − v_b − ω_b × (p − x_b),   ω × r = ω (−r_y, r_x),
+// so the normal row on body a is (n_x, n_y, r_a × n) with r × n = r_x n_y − r_y n_x, and
+// the negated row (with r_b) on a dynamic body b; the tangent row likewise with t. Jn has
+// one row per contact; Jt has one row per contact with μ > 0 only (no tangential
+// unknowns where μ = 0). Impulses λ act as M Δv = Jnᵀ λn + Jtᵀ λt.
+#include <lcprelax/world/world.hpp>
+#include <lcprelax/sparse/types.hpp>
+
+#include <vector>
+
+namespace lcprelax {
+
+/// Bodies and contacts that interact: connected through contacts between dynamic bodies
+/// (contacts with static shapes or static bodies do not connect islands).
+struct Island {
+  std::vector<int> bodies;    ///< dynamic body indices, increasing
+  std::vector<int> contacts;  ///< contact indices, increasing
+};
+
+/// Islands of the dynamic bodies that have at least one contact, in increasing order of
+/// their smallest body index (deterministic).
+std::vector<Island> find_islands(const World& world, const std::vector<Contact>& contacts);
+
+/// One island's contact problem data.
+struct ContactSystem {
+  std::vector<int> bodies;    ///< global index of each 3-column block
+  std::vector<int> contacts;  ///< global contact index of each Jn row
+  std::vector<int> friction_rows;  ///< Jn row (local contact) of each Jt row
+  Vector minv;                ///< 3·bodies: 1/m, 1/m, 1/I
+  SparseMatrix Jn;            ///< contacts × 3·bodies
+  SparseMatrix Jt;            ///< friction rows × 3·bodies
+  Vector phi;                 ///< gap per contact (m)
+  Vector mu;                  ///< μ per friction row
+  Vector v_star;              ///< free velocity v + Δt M⁻¹ f (3·bodies)
+
+  Index num_contacts() const { return static_cast<Index>(contacts.size()); }
+  Index num_friction() const { return static_cast<Index>(friction_rows.size()); }
+  Index num_dofs() const { return static_cast<Index>(3 * bodies.size()); }
+};
+
+/// Assembles an island: Jacobians, gaps, μ, M⁻¹ and the free velocity v* = v + Δt·g
+/// (gravity; applied generalized forces enter through `applied`, 3 per world body, N and
+/// N·m, or empty).
+ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
+                                      const Island& island, double dt, const std::vector<Vec3>& applied = {});
+
+/// W = J M⁻¹ Jᵀ for J = [Jn; Jt] (rows: contacts, then friction rows).
+SparseMatrix delassus(const ContactSystem& s);
+
+}  // namespace lcprelax

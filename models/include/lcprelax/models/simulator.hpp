@@ -1,0 +1,123 @@
+#pragma once
+// Semi-implicit, velocity-level time stepping of a 2-D scene (DESIGN §1.4).
+//
+// One step of length Δt:
+//   1. contacts with gap φ ≤ margin + 2·Δt·max(|v| + |ω| r) over the bodies and over their
+//      current and free velocities v, v* = v + Δt·M⁻¹f (a speculative margin, so that no
+//      pair can close more than its gap in one step unseen);
+//   2. islands of touching dynamic bodies, each solved as its own contact problem by the
+//      scene's model (contact_step.hpp), in parallel over islands with OpenMP; bodies
+//      without contacts fly freely (v⁺ = v + Δt·g);
+//   3. positions q⁺ = q + Δt·v⁺ (symplectic Euler);
+//   4. post-stabilization (Cline & Pai 2003): where the linearized gap φ + Δt·Jn v⁺ falls
+//      below −slop, positions are projected by  min ½ΔqᵀMΔq  s.t.  Jn Δq + φ⁺ + slop ≥ 0,
+//      an LCP in Wnn solved by Lemke (where Lemke fails on a singular Wnn, the primal QP by
+//      the interior point); velocities are untouched, so penetration is removed without
+//      adding kinetic energy.
+// Warm starts: each contact is keyed by (body a, body b, static shape, ordinal within the
+// pair); the final Lemke basis of its unknowns is reused next step.
+//
+// Energy (J): kinetic ½ Σ (m|v|² + Iω²) plus potential −Σ m g·x (zero at the origin).
+#include <lcprelax/kkt/qp_settings.hpp>
+#include <lcprelax/lcp/lcp_types.hpp>
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/world/world.hpp>
+
+#include <map>
+#include <array>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lcprelax {
+
+/// The contact model a world is stepped with: `lcp` (Stewart–Trinkle/Anitescu velocity-level
+/// LCP, solved by Lemke) or `convex` (the two-phase convex model, solved by the interior-point
+/// QP); contact_step.hpp states both.
+enum class ContactModel { lcp, convex };
+
+/// "lcp" or "convex".
+constexpr const char* to_string(ContactModel m) {
+  switch (m) {
+    case ContactModel::lcp: return "lcp";
+    case ContactModel::convex: return "convex";
+  }
+  return "unknown";
+}
+
+/// Inverse of to_string; throws InputError "unknown contact model 'x' (expected lcp or
+/// convex)" for any other text (case-sensitive).
+ContactModel parse_contact_model(std::string_view text);
+
+struct SimulatorSettings {
+  double dt = 1e-2;                        ///< time step (s), > 0 and finite
+  ContactModel model = ContactModel::lcp;  ///< contact model
+  double margin = 1e-2;  ///< contact margin (m), ≥ 0: contacts with gap φ above it (plus the speculative part) are not posed
+  LemkeSettings lemke;       ///< for the lcp model and the position projection
+  QpSettings qp;             ///< for the convex model (eps_abs 1e-8 by default here)
+  double penetration_slop = 1e-4;  ///< m: allowed overlap before projection
+  double convex_rho = 1e-3;  ///< weight ρ of the convex model's λnᵀdiag(exp(φ))diag(Wnn)λn term
+  bool post_stabilization = true;
+  bool warm_start = true;
+  int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
+  SimulatorSettings();
+
+  /// Empty when valid, else a message naming the first bad field ("dt: must be ...").
+  std::string validation_error() const;
+};
+
+struct StepStats {
+  int contacts = 0;
+  int islands = 0;
+  int largest_island_unknowns = 0;
+  long work = 0;               ///< Lemke pivots + interior-point iterations
+  int warm_started_islands = 0;
+  double max_residual = 0.0;   ///< largest contact-solve residual (contact_step.hpp)
+  double max_penetration = 0.0;  ///< largest −φ ≥ 0 at the start of the step (m)
+  /// Islands whose solve failed. Fallbacks: an lcp island takes the convex model's
+  /// answer; a convex island of at most 64 contacts takes the LCP model's (Lemke) answer
+  /// if Lemke solves it, else (and on larger islands) its phase-1 (frictionless) answer;
+  /// with neither, v⁺ = v* (no contact impulse). A fallback still counts as a failure.
+  int failed_islands = 0;
+  std::string first_failure;   ///< message of the first failed solve
+  int projected_islands = 0;     ///< islands whose positions the post-stabilization moved
+  int failed_projections = 0;    ///< islands whose projection failed (positions left as they were)
+  double collision_seconds = 0.0, solve_seconds = 0.0;
+};
+
+class Simulator {
+ public:
+  /// Throws InputError on invalid settings (validation_error()) or bodies (non-positive
+  /// mass or inertia of a dynamic body, non-finite pose or velocity).
+  explicit Simulator(World world, SimulatorSettings settings = {});
+
+  /// Advances one step; applied (fx, fy, torque) per body (N, N·m) may be empty.
+  StepStats step(const std::vector<Vec3>& applied = {});
+
+  const World& world() const { return world_; }
+  const SimulatorSettings& settings() const { return settings_; }
+  double time() const { return time_; }
+  long steps_taken() const { return steps_; }
+  /// Contacts found at the start of the last step.
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  double kinetic_energy() const;
+  double potential_energy() const;
+  double total_energy() const { return kinetic_energy() + potential_energy(); }
+
+ private:
+  using ContactKey = std::array<int, 5>;
+  struct WarmEntry {
+    bool normal = false, plus = false, minus = false, slide = false;
+  };
+  std::vector<ContactKey> contact_keys() const;
+  void project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats);
+
+  World world_;
+  SimulatorSettings settings_;
+  double time_ = 0.0;
+  long steps_ = 0;
+  std::vector<Contact> contacts_;
+  std::map<ContactKey, WarmEntry> warm_;
+};
+
+}  // namespace lcprelax

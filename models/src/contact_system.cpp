@@ -1,0 +1,129 @@
+// Islands (union–find) and contact Jacobian assembly (contact_system.hpp).
+#include <lcprelax/models/contact_system.hpp>
+#include <lcprelax/core/errors.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace lcprelax {
+namespace {
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+bool dynamic_body(const World& w, int b) { return b >= 0 && !w.bodies[b].is_static; }
+
+// Appends the 3 entries of a row for body block k: direction d at lever arm r.
+void add_row(std::vector<Triplet>& t, Index row, Index block, const Vec2& d, const Vec2& r, double sign) {
+  t.emplace_back(row, 3 * block, sign * d.x());
+  t.emplace_back(row, 3 * block + 1, sign * d.y());
+  t.emplace_back(row, 3 * block + 2, sign * (r.x() * d.y() - r.y() * d.x()));
+}
+
+}  // namespace
+
+std::vector<Island> find_islands(const World& world, const std::vector<Contact>& contacts) {
+  const int nb = static_cast<int>(world.bodies.size());
+  std::vector<int> parent(nb);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<bool> touched(nb, false);
+  for (const Contact& c : contacts) {
+    if (!dynamic_body(world, c.body_a))
+      throw InputError("contact with body_a = " + std::to_string(c.body_a) + " that is not a dynamic body");
+    touched[c.body_a] = true;
+    if (dynamic_body(world, c.body_b)) {
+      touched[c.body_b] = true;
+      const int ra = find_root(parent, c.body_a), rb = find_root(parent, c.body_b);
+      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  std::vector<int> island_of(nb, -1);
+  std::vector<Island> islands;
+  for (int b = 0; b < nb; ++b) {
+    if (!touched[b]) continue;
+    const int root = find_root(parent, b);
+    if (island_of[root] < 0) {
+      island_of[root] = static_cast<int>(islands.size());
+      islands.emplace_back();
+    }
+    islands[island_of[root]].bodies.push_back(b);
+  }
+  for (int c = 0; c < static_cast<int>(contacts.size()); ++c)
+    islands[island_of[find_root(parent, contacts[c].body_a)]].contacts.push_back(c);
+  return islands;
+}
+
+ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
+                                      const Island& island, double dt, const std::vector<Vec3>& applied) {
+  if (!applied.empty() && applied.size() != world.bodies.size())
+    throw InputError("applied forces: one (fx, fy, torque) per body expected");
+  ContactSystem s;
+  s.bodies = island.bodies;
+  s.contacts = island.contacts;
+  const Index nb = static_cast<Index>(s.bodies.size());
+  std::vector<int> block(world.bodies.size(), -1);
+  s.minv.resize(3 * nb);
+  s.v_star.resize(3 * nb);
+  for (Index k = 0; k < nb; ++k) {
+    const RigidBody& b = world.bodies[s.bodies[k]];
+    block[s.bodies[k]] = static_cast<int>(k);
+    s.minv.segment<3>(3 * k) << 1.0 / b.mass, 1.0 / b.mass, 1.0 / b.inertia;
+    Vec3 f(b.mass * world.gravity.x(), b.mass * world.gravity.y(), 0.0);
+    if (!applied.empty()) f += applied[s.bodies[k]];
+    s.v_star.segment<3>(3 * k) = b.velocity + dt * s.minv.segment<3>(3 * k).cwiseProduct(f);
+  }
+  const Index nc = s.num_contacts();
+  s.phi.resize(nc);
+  std::vector<Triplet> tn, tt;
+  std::vector<double> mu;
+  for (Index i = 0; i < nc; ++i) {
+    const Contact& c = contacts[s.contacts[i]];
+    if (block[c.body_a] < 0) throw InputError("contact body_a is not in the island");
+    s.phi(i) = c.gap;
+    const Vec2 n = c.normal, t(-n.y(), n.x());
+    const Vec2 ra = c.point - world.bodies[c.body_a].pose.head<2>();
+    const bool b_dynamic = dynamic_body(world, c.body_b);
+    const Vec2 rb = b_dynamic ? Vec2(c.point - world.bodies[c.body_b].pose.head<2>()) : Vec2::Zero();
+    add_row(tn, i, block[c.body_a], n, ra, 1.0);
+    if (b_dynamic) add_row(tn, i, block[c.body_b], n, rb, -1.0);
+    if (c.mu > 0) {
+      const Index f = static_cast<Index>(s.friction_rows.size());
+      s.friction_rows.push_back(static_cast<int>(i));
+      mu.push_back(c.mu);
+      add_row(tt, f, block[c.body_a], t, ra, 1.0);
+      if (b_dynamic) add_row(tt, f, block[c.body_b], t, rb, -1.0);
+    }
+  }
+  s.Jn.resize(nc, 3 * nb);
+  s.Jn.setFromTriplets(tn.begin(), tn.end());
+  s.Jt.resize(s.num_friction(), 3 * nb);
+  s.Jt.setFromTriplets(tt.begin(), tt.end());
+  s.mu = Eigen::Map<const Vector>(mu.data(), static_cast<Index>(mu.size()));
+  return s;
+}
+
+SparseMatrix delassus(const ContactSystem& s) {
+  const Index nc = s.num_contacts(), nf = s.num_friction();
+  SparseMatrix J(nc + nf, s.num_dofs());
+  J.reserve(s.Jn.nonZeros() + s.Jt.nonZeros());
+  // Stack [Jn; Jt] row-wise via triplets (both are CSC).
+  std::vector<Triplet> t;
+  t.reserve(static_cast<std::size_t>(s.Jn.nonZeros() + s.Jt.nonZeros()));
+  for (Index j = 0; j < s.Jn.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) t.emplace_back(it.row(), j, it.value());
+  for (Index j = 0; j < s.Jt.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(s.Jt, j); it; ++it) t.emplace_back(nc + it.row(), j, it.value());
+  J.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix JMinv = J * s.minv.asDiagonal();
+  SparseMatrix W = (JMinv * J.transpose()).pruned();
+  W.makeCompressed();
+  return W;
+}
+
+}  // namespace lcprelax

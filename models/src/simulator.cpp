@@ -1,0 +1,278 @@
+// Time stepping over islands with warm starts and post-stabilization (simulator.hpp).
+#include <lcprelax/contact/collision.hpp>
+#include <lcprelax/kkt/qp_solver.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/models/simulator.hpp>
+#include <lcprelax/core/errors.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+
+#ifdef LCPRELAX_HAS_OPENMP
+#include <omp.h>
+#endif
+
+namespace lcprelax {
+namespace {
+
+// Largest island (contacts) whose failed convex solve is retried with the LCP model: Lemke
+// is milliseconds there, while on pile-sized islands (hundreds of contacts) it can take
+// seconds to minutes with its retries (contact_step.hpp), so those keep phase 1's answer.
+constexpr Index kConvexFallbackMaxContacts = 64;
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+struct IslandWork {
+  ContactSystem system;
+  ContactSolution solution;
+  bool warm_started = false;
+  std::string error;  // exception text, if any
+};
+
+}  // namespace
+
+SimulatorSettings::SimulatorSettings() { qp.eps_abs = 1e-8; }
+
+ContactModel parse_contact_model(std::string_view text) {
+  for (ContactModel m : {ContactModel::lcp, ContactModel::convex})
+    if (text == to_string(m)) return m;
+  throw InputError("unknown contact model '" + std::string(text) + "' (expected lcp or convex)");
+}
+
+std::string SimulatorSettings::validation_error() const {
+  if (!std::isfinite(dt) || !(dt > 0.0)) return "dt: must be finite and > 0";
+  if (!std::isfinite(margin) || !(margin >= 0.0)) return "margin: must be finite and >= 0";
+  if (model != ContactModel::lcp && model != ContactModel::convex) return "model: unknown contact model";
+  if (!(penetration_slop >= 0)) return "penetration_slop: must be >= 0";
+  if (!(convex_rho >= 0) || !std::isfinite(convex_rho)) return "convex_rho: must be finite and >= 0";
+  if (std::string e = lemke.validation_error(); !e.empty()) return "lemke." + e;
+  if (std::string e = qp.validation_error(); !e.empty()) return "qp." + e;
+  return {};
+}
+
+Simulator::Simulator(World world, SimulatorSettings settings) : world_(std::move(world)), settings_(std::move(settings)) {
+  if (std::string e = settings_.validation_error(); !e.empty()) throw InputError("SimulatorSettings: " + e);
+  for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+    const RigidBody& b = world_.bodies[i];
+    if (!b.is_static && (!(b.mass > 0) || !(b.inertia > 0)))
+      throw InputError("bodies[" + std::to_string(i) + "]: mass and inertia must be > 0");
+    if (!b.pose.allFinite() || !b.velocity.allFinite())
+      throw InputError("bodies[" + std::to_string(i) + "]: pose and velocity must be finite");
+  }
+}
+
+std::vector<Simulator::ContactKey> Simulator::contact_keys() const {
+  std::vector<ContactKey> keys(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    keys[i] = {c.body_a, c.body_b, static_cast<int>(c.static_kind), c.static_index, 0};
+    if (i > 0 && std::equal(keys[i].begin(), keys[i].begin() + 4, keys[i - 1].begin())) keys[i][4] = keys[i - 1][4] + 1;
+  }
+  return keys;
+}
+
+double Simulator::kinetic_energy() const {
+  double e = 0.0;
+  for (const RigidBody& b : world_.bodies)
+    if (!b.is_static) e += 0.5 * (b.mass * b.velocity.head<2>().squaredNorm() + b.inertia * b.velocity(2) * b.velocity(2));
+  return e;
+}
+
+double Simulator::potential_energy() const {
+  double e = 0.0;
+  for (const RigidBody& b : world_.bodies)
+    if (!b.is_static) e -= b.mass * world_.gravity.dot(b.pose.head<2>());
+  return e;
+}
+
+void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats) {
+  const double dt = settings_.dt, slop = settings_.penetration_slop;
+  const Index nc = s.num_contacts();
+  if (nc == 0) return;
+  const Vector phi_next = s.phi + dt * (s.Jn * v_next);
+  if (phi_next.minCoeff() >= -slop) return;
+  const Vector bound = phi_next + Vector::Constant(nc, slop);  // Jn Δq + bound ≥ 0
+  // Dual: the LCP 0 ≤ z ⊥ Wnn z + bound ≥ 0, Δq = M⁻¹Jnᵀz (exact, by Lemke).
+  const SparseMatrix JnMinv = s.Jn * s.minv.asDiagonal();
+  SparseMatrix Wnn = JnMinv * s.Jn.transpose();
+  Wnn.makeCompressed();
+  LemkeSettings plain = settings_.lemke;  // no retries: the interior point below is the fallback
+  plain.covering_retries = 0;
+  plain.regularization_retries = 0;
+  LemkeSolver lemke(plain);
+  lemke.setup(Wnn, bound);
+  const LcpResult& r = lemke.solve();
+  Vector dq;
+  if (r.info.status == LcpStatus::solved) {
+    dq = s.minv.cwiseProduct(s.Jn.transpose() * r.z);
+  } else {
+    // Primal, by the interior point: min ½ΔqᵀMΔq s.t. Jn Δq ≥ −bound. Strictly convex and
+    // strictly feasible, so it is solved where Lemke fails on a singular Wnn (more
+    // contacts than degrees of freedom, e.g. a pyramid whose boxes touch side to side).
+    const Index nv = s.num_dofs();
+    QpProblem p(nv);
+    std::vector<Triplet> t;
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+    p.P.resize(nv, nv);
+    p.P.setFromTriplets(t.begin(), t.end());
+    p.G = s.Jn;
+    p.l = -bound;
+    p.u = Vector::Constant(nc, std::numeric_limits<double>::infinity());
+    QpSolver qp(settings_.qp);
+    qp.setup(p);
+    const QpResult& rq = qp.solve();
+    if (rq.info.status != QpStatus::solved && rq.info.status != QpStatus::solved_inaccurate) {
+      ++stats.failed_projections;  // positions stay as they are
+      return;
+    }
+    dq = rq.x;
+  }
+  for (std::size_t k = 0; k < s.bodies.size(); ++k) world_.bodies[s.bodies[k]].pose += dq.segment<3>(3 * k);
+  ++stats.projected_islands;
+}
+
+StepStats Simulator::step(const std::vector<Vec3>& applied) {
+  World& world = world_;
+  const double dt = settings_.dt;
+  if (!applied.empty() && applied.size() != world.bodies.size())
+    throw InputError("Simulator::step: applied forces need one (fx, fy, torque) per body");
+  StepStats stats;
+  auto t0 = std::chrono::steady_clock::now();
+  // Speculative margin: contacts enter before they can close during this step, so fast
+  // bodies do not pass the margin in one step and penetrate (the gap term φ/Δt then lets
+  // them close exactly). Each body can move |v| + |ω|·r per unit time, with v and ω the
+  // larger of the current and the free velocity v* = v + Δt·M⁻¹f (gravity and applied
+  // forces act within the step: a body at rest falls g·Δt² in its first step, 9.8 cm at
+  // Δt = 0.1 s, measured in tests/dynamics_penetration_test.cpp); two bodies twice.
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < world.bodies.size(); ++i) {
+    const RigidBody& b = world.bodies[i];
+    if (b.is_static) continue;
+    double r = 0.0;
+    for (const Vec2& p : b.shape.vertices) r = std::max(r, p.norm());
+    Vec3 f(b.mass * world.gravity.x(), b.mass * world.gravity.y(), 0.0);
+    if (!applied.empty()) f += applied[i];
+    const Vec3 free = b.velocity + dt * Vec3(f(0) / b.mass, f(1) / b.mass, f(2) / b.inertia);
+    for (const Vec3& v : {b.velocity, free}) fastest = std::max(fastest, v.head<2>().norm() + std::abs(v(2)) * r);
+  }
+  const double margin = settings_.margin + 2.0 * fastest * dt;
+  contacts_ = find_contacts(world, CollisionSettings{margin});
+  stats.contacts = static_cast<int>(contacts_.size());
+  for (const Contact& c : contacts_) stats.max_penetration = std::max(stats.max_penetration, -c.gap);
+  const std::vector<Island> islands = find_islands(world, contacts_);
+  const std::vector<ContactKey> keys = contact_keys();
+  stats.islands = static_cast<int>(islands.size());
+  stats.collision_seconds = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  std::vector<IslandWork> work(islands.size());
+  const bool lcp = settings_.model == ContactModel::lcp;
+  const int n_islands = static_cast<int>(islands.size());
+#ifdef LCPRELAX_HAS_OPENMP
+  const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+#endif
+  for (int i = 0; i < n_islands; ++i) {
+    IslandWork& wk = work[i];
+    try {
+      wk.system = assemble_contact_system(world, contacts_, islands[i], dt, applied);
+      const ContactSystem& s = wk.system;
+      if (lcp) {
+        const Index nc = s.num_contacts(), nf = s.num_friction();
+        std::vector<bool> warm;
+        if (settings_.warm_start) {
+          warm.assign(static_cast<std::size_t>(nc + 3 * nf), false);
+          for (Index c = 0; c < nc; ++c) {
+            auto it = warm_.find(keys[s.contacts[c]]);
+            if (it != warm_.end()) warm[c] = it->second.normal;
+          }
+          for (Index f = 0; f < nf; ++f) {
+            auto it = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
+            if (it == warm_.end()) continue;
+            warm[nc + f] = it->second.plus;
+            warm[nc + nf + f] = it->second.minus;
+            warm[nc + 2 * nf + f] = it->second.slide;
+          }
+        }
+        wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm);
+      } else {
+        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
+      }
+      if (!wk.solution.ok && lcp) {  // fallback: the convex model (interior point)
+        ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
+        fallback.message = wk.solution.message + (fallback.ok ? "; convex model used" : "; convex fallback: " + fallback.message);
+        fallback.residual = std::max(fallback.residual, wk.solution.residual);
+        wk.solution = std::move(fallback);
+        wk.solution.ok = false;
+      }
+      if (!wk.solution.ok && !lcp && s.num_contacts() <= kConvexFallbackMaxContacts) {
+        // fallback: the Stewart–Trinkle LCP (Lemke, cold), kept only if Lemke solves it
+        ContactSolution fallback = solve_lcp_model(s, dt, settings_.lemke, {});
+        if (fallback.ok) {
+          fallback.message = wk.solution.message + "; lcp model used";
+          fallback.residual = std::max(fallback.residual, wk.solution.residual);
+          fallback.work += wk.solution.work;
+          fallback.z_basic.clear();
+          wk.solution = std::move(fallback);
+          wk.solution.ok = false;
+        }
+      }
+      // Last resort: a failed convex solve's frictionless phase-1 velocities, else v*.
+      if (!wk.solution.ok && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;
+    } catch (const std::exception& e) {
+      wk.error = e.what();
+    }
+  }
+  for (const IslandWork& wk : work)
+    if (!wk.error.empty()) throw std::runtime_error("contact solve failed: " + wk.error);
+
+  // Velocities: islands from their solutions, free bodies by gravity and applied forces.
+  std::vector<bool> in_island(world.bodies.size(), false);
+  std::map<ContactKey, WarmEntry> next_warm;
+  for (std::size_t i = 0; i < work.size(); ++i) {
+    const ContactSystem& s = work[i].system;
+    const ContactSolution& sol = work[i].solution;
+    for (std::size_t k = 0; k < s.bodies.size(); ++k) {
+      in_island[s.bodies[k]] = true;
+      world.bodies[s.bodies[k]].velocity = sol.v_next.segment<3>(3 * k);
+    }
+    stats.work += sol.work;
+    stats.max_residual = std::max(stats.max_residual, sol.residual);
+    stats.largest_island_unknowns = std::max<int>(stats.largest_island_unknowns,
+                                                  static_cast<int>(s.num_contacts() + (lcp ? 3 : 1) * s.num_friction()));
+    if (sol.warm_started) ++stats.warm_started_islands;
+    if (!sol.ok && ++stats.failed_islands == 1) stats.first_failure = sol.message;
+    const Index nc = s.num_contacts(), nf = s.num_friction();
+    if (lcp && static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
+      for (Index c = 0; c < nc; ++c) next_warm[keys[s.contacts[c]]].normal = sol.z_basic[c];
+      for (Index f = 0; f < nf; ++f) {
+        WarmEntry& e = next_warm[keys[s.contacts[s.friction_rows[f]]]];
+        e.plus = sol.z_basic[nc + f];
+        e.minus = sol.z_basic[nc + nf + f];
+        e.slide = sol.z_basic[nc + 2 * nf + f];
+      }
+    }
+  }
+  warm_.swap(next_warm);
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    RigidBody& body = world.bodies[b];
+    if (body.is_static || in_island[b]) continue;
+    Vec3 f(body.mass * world.gravity.x(), body.mass * world.gravity.y(), 0.0);
+    if (!applied.empty()) f += applied[b];
+    body.velocity += dt * Vec3(f(0) / body.mass, f(1) / body.mass, f(2) / body.inertia);
+  }
+  for (RigidBody& body : world.bodies)
+    if (!body.is_static) body.pose += dt * body.velocity;
+  if (settings_.post_stabilization)
+    for (const IslandWork& wk : work) project_positions(wk.system, wk.solution.v_next, stats);
+  stats.solve_seconds = seconds_since(t0);
+  time_ += dt;
+  ++steps_;
+  return stats;
+}
+
+}  // namespace lcprelax

@@ -1,0 +1,273 @@
+// Scene files: JSON reader and writer (scenes/scene_json.hpp documents the schema).
+#include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/scenes/scene_json.hpp>
+#include <lcprelax/core/errors.hpp>
+
+#include "json_fields.hpp"
+
+#include <climits>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace lcprelax {
+namespace {
+
+using scene_json::Json;
+using scene_json::element;
+using scene_json::fail;
+using scene_json::find;
+using scene_json::member;
+
+constexpr long long kMaxInt = INT_MAX;
+
+// validate_polygon, as an InputError "PATH: message" ("bodies[3].vertices: vertices are
+// clockwise").
+void check_polygon(const Polygon& polygon, const std::string& path) {
+  const std::string error = validate_polygon(polygon);
+  if (!error.empty()) fail(path, error);
+}
+
+double nonnegative(const Json& j, const std::string& path) {
+  const double v = scene_json::number(j, path);
+  if (v < 0.0) fail(path, "must be >= 0");
+  return v;
+}
+
+double positive(const Json& j, const std::string& path) {
+  const double v = scene_json::number(j, path);
+  if (!(v > 0.0)) fail(path, "must be > 0");
+  return v;
+}
+
+int material(const Json& obj, const std::string& path) {
+  const Json* m = find(obj, "material");
+  return m ? static_cast<int>(scene_json::integer(*m, member(path, "material"), 0, kMaxInt)) : 0;
+}
+
+FrictionTable read_friction(const Json& j, const std::string& path) {
+  scene_json::expect_object(j, path, {"default", "pairs"});
+  FrictionTable table;
+  if (const Json* d = find(j, "default")) table.default_mu = nonnegative(*d, member(path, "default"));
+  const Json* pairs = find(j, "pairs");
+  if (pairs == nullptr) return table;
+  const std::string ppath = member(path, "pairs");
+  scene_json::array(*pairs, ppath);
+  for (std::size_t i = 0; i < pairs->size(); ++i) {
+    const std::string ip = element(ppath, i);
+    const Json& p = (*pairs)[i];
+    scene_json::expect_object(p, ip, {"materials", "mu"});
+    const std::string mp = member(ip, "materials");
+    const Json& m = scene_json::require(p, ip, "materials");
+    if (!m.is_array() || m.size() != 2) fail(mp, "expected two material indices [a, b]");
+    FrictionTable::Pair pair;
+    pair.material_a = static_cast<int>(scene_json::integer(m[0], element(mp, 0), 0, kMaxInt));
+    pair.material_b = static_cast<int>(scene_json::integer(m[1], element(mp, 1), 0, kMaxInt));
+    pair.mu = nonnegative(scene_json::require(p, ip, "mu"), member(ip, "mu"));
+    for (const FrictionTable::Pair& q : table.pairs)
+      if ((q.material_a == pair.material_a && q.material_b == pair.material_b) ||
+          (q.material_a == pair.material_b && q.material_b == pair.material_a))
+        fail(mp, "pair (" + std::to_string(pair.material_a) + ", " +
+                     std::to_string(pair.material_b) + ") is listed twice");
+    table.pairs.push_back(pair);
+  }
+  return table;
+}
+
+RigidBody read_body(const Json& j, const std::string& path) {
+  scene_json::expect_object(j, path, {"vertices", "density", "mass", "inertia", "position", "angle",
+                                      "velocity", "angular_velocity", "material", "static"});
+  RigidBody body;
+  const std::string vpath = member(path, "vertices");
+  const Json& vs = scene_json::array(scene_json::require(j, path, "vertices"), vpath);
+  Polygon polygon;
+  for (std::size_t i = 0; i < vs.size(); ++i) polygon.vertices.push_back(scene_json::vec2(vs[i], element(vpath, i)));
+  check_polygon(polygon, vpath);
+
+  if (const Json* s = find(j, "static")) body.is_static = scene_json::boolean(*s, member(path, "static"));
+  const Json* p = find(j, "position");
+  const Vec2 position = p ? scene_json::vec2(*p, member(path, "position")) : Vec2::Zero();
+  const Json* a = find(j, "angle");
+  const double angle = a ? scene_json::number(*a, member(path, "angle")) : 0.0;
+
+  // Mass properties: density (from the polygon) or mass and inertia as given.
+  const Json* density = find(j, "density");
+  const Json* mass = find(j, "mass");
+  const Json* inertia = find(j, "inertia");
+  if (density && (mass || inertia)) fail(path, "give either 'density' or 'mass' and 'inertia', not both");
+  if (density) {
+    const MassProperties props = mass_properties(polygon, positive(*density, member(path, "density")));
+    body.mass = props.mass;
+    body.inertia = props.inertia;
+  } else if (mass || inertia) {
+    if (!mass) fail(path, "'inertia' given without 'mass'");
+    if (!inertia) fail(path, "'mass' given without 'inertia'");
+    const auto read = body.is_static ? nonnegative : positive;
+    body.mass = read(*mass, member(path, "mass"));
+    body.inertia = read(*inertia, member(path, "inertia"));
+  } else if (!body.is_static) {
+    fail(path, "a dynamic body needs 'density' or 'mass' and 'inertia'");
+  } else {
+    body.mass = body.inertia = 0.0;
+  }
+
+  // Recentre the polygon on its centroid C: the centre of mass is position + R(angle) C.
+  const Vec2 c = recentre(polygon);
+  body.shape = std::move(polygon);
+  body.pose << to_world(Vec3(position.x(), position.y(), angle), c), angle;
+
+  const Json* v = find(j, "velocity");
+  const Vec2 velocity = v ? scene_json::vec2(*v, member(path, "velocity")) : Vec2::Zero();
+  const Json* w = find(j, "angular_velocity");
+  body.velocity = Vec3(velocity.x(), velocity.y(), w ? scene_json::number(*w, member(path, "angular_velocity")) : 0.0);
+  body.material = material(j, path);
+  return body;
+}
+
+HalfPlane read_half_plane(const Json& j, const std::string& path) {
+  scene_json::expect_object(j, path, {"normal", "offset", "material"});
+  HalfPlane h;
+  h.normal = scene_json::vec2(scene_json::require(j, path, "normal"), member(path, "normal"));
+  const Json* d = find(j, "offset");
+  h.offset = d ? scene_json::number(*d, member(path, "offset")) : 0.0;
+  const double n = h.normal.norm();
+  if (!(n > 0.0)) fail(member(path, "normal"), "zero length");
+  if (std::abs(n - 1.0) > 4.0 * std::numeric_limits<double>::epsilon()) {  // keep unit normals exact
+    h.normal /= n;
+    h.offset /= n;
+  }
+  h.material = material(j, path);
+  return h;
+}
+
+Segment read_segment(const Json& j, const std::string& path) {
+  scene_json::expect_object(j, path, {"a", "b", "material"});
+  Segment s;
+  s.a = scene_json::vec2(scene_json::require(j, path, "a"), member(path, "a"));
+  s.b = scene_json::vec2(scene_json::require(j, path, "b"), member(path, "b"));
+  if (s.a == s.b) fail(path, "end points 'a' and 'b' coincide");
+  s.material = material(j, path);
+  return s;
+}
+
+// Reads the array `key` of the scene with `read(element, path)`.
+template <class T, class Read>
+std::vector<T> read_list(const Json& root, const char* key, Read read) {
+  std::vector<T> out;
+  const Json* list = find(root, key);
+  if (list == nullptr) return out;
+  scene_json::array(*list, key);
+  for (std::size_t i = 0; i < list->size(); ++i) out.push_back(read((*list)[i], element(key, i)));
+  return out;
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view json_text) {
+  const Json root = scene_json::parse_json(json_text);
+  scene_json::expect_object(root, "", {"name", "gravity", "dt", "steps", "model", "margin", "friction",
+                                       "bodies", "half_planes", "segments"});
+  Scene scene;
+  if (const Json* n = find(root, "name")) scene.name = scene_json::string(*n, "name");
+  if (const Json* g = find(root, "gravity")) scene.world.gravity = scene_json::vec2(*g, "gravity");
+  SimulatorSettings& s = scene.settings;
+  if (const Json* dt = find(root, "dt")) s.dt = positive(*dt, "dt");
+  if (const Json* k = find(root, "steps")) scene.steps = static_cast<int>(scene_json::integer(*k, "steps", 0, kMaxInt));
+  if (const Json* m = find(root, "model")) {
+    try {
+      s.model = parse_contact_model(scene_json::string(*m, "model"));
+    } catch (const InputError& e) {
+      fail("model", e.what());
+    }
+  }
+  if (const Json* m = find(root, "margin")) s.margin = nonnegative(*m, "margin");
+  scene.validate();
+  if (const Json* f = find(root, "friction")) scene.world.friction = read_friction(*f, "friction");
+  scene.world.bodies = read_list<RigidBody>(root, "bodies", read_body);
+  scene.world.half_planes = read_list<HalfPlane>(root, "half_planes", read_half_plane);
+  scene.world.segments = read_list<Segment>(root, "segments", read_segment);
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return parse_scene(text.str());
+  } catch (const InputError& e) {
+    throw InputError(path + ": " + e.what());
+  }
+}
+
+std::string write_scene(const Scene& scene) {
+  using scene_json::finite;
+  scene.validate();
+  const World& w = scene.world;
+  Json root = Json::object();
+  root["name"] = scene.name;
+  root["gravity"] = finite(w.gravity, "gravity");
+  root["dt"] = scene.settings.dt;
+  root["steps"] = scene.steps;
+  root["model"] = to_string(scene.settings.model);
+  root["margin"] = scene.settings.margin;
+  Json pairs = Json::array();
+  for (std::size_t i = 0; i < w.friction.pairs.size(); ++i) {
+    const FrictionTable::Pair& p = w.friction.pairs[i];
+    pairs.push_back({{"materials", {p.material_a, p.material_b}},
+                     {"mu", finite(p.mu, member(element("friction.pairs", i), "mu"))}});
+  }
+  root["friction"] = {{"default", finite(w.friction.default_mu, "friction.default")}, {"pairs", pairs}};
+  Json bodies = Json::array();
+  for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+    const RigidBody& b = w.bodies[i];
+    const std::string path = element("bodies", i);
+    Json vertices = Json::array();
+    for (std::size_t k = 0; k < b.shape.vertices.size(); ++k)
+      vertices.push_back(finite(b.shape.vertices[k], element(member(path, "vertices"), k)));
+    Json body = {{"vertices", vertices}};
+    if (!b.is_static || b.mass != 0.0 || b.inertia != 0.0) {
+      body["mass"] = finite(b.mass, member(path, "mass"));
+      body["inertia"] = finite(b.inertia, member(path, "inertia"));
+    }
+    body["position"] = finite(Vec2(b.pose.x(), b.pose.y()), member(path, "position"));
+    body["angle"] = finite(b.pose.z(), member(path, "angle"));
+    body["velocity"] = finite(Vec2(b.velocity.x(), b.velocity.y()), member(path, "velocity"));
+    body["angular_velocity"] = finite(b.velocity.z(), member(path, "angular_velocity"));
+    body["material"] = b.material;
+    body["static"] = b.is_static;
+    bodies.push_back(std::move(body));
+  }
+  root["bodies"] = std::move(bodies);
+  Json half_planes = Json::array();
+  for (std::size_t i = 0; i < w.half_planes.size(); ++i) {
+    const HalfPlane& h = w.half_planes[i];
+    const std::string path = element("half_planes", i);
+    half_planes.push_back({{"normal", finite(h.normal, member(path, "normal"))},
+                           {"offset", finite(h.offset, member(path, "offset"))},
+                           {"material", h.material}});
+  }
+  root["half_planes"] = std::move(half_planes);
+  Json segments = Json::array();
+  for (std::size_t i = 0; i < w.segments.size(); ++i) {
+    const Segment& s = w.segments[i];
+    const std::string path = element("segments", i);
+    segments.push_back({{"a", finite(s.a, member(path, "a"))},
+                        {"b", finite(s.b, member(path, "b"))},
+                        {"material", s.material}});
+  }
+  root["segments"] = std::move(segments);
+  return scene_json::pretty(root);
+}
+
+void save_scene(const std::string& path, const Scene& scene) {
+  const std::string text = write_scene(scene);
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(path + ": cannot write scene file");
+}
+
+}  // namespace lcprelax
