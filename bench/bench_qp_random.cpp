@@ -43,7 +43,7 @@ QpSettings bench_settings() {
   return s;
 }
 
-bool usable(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
+bool usable(QpStatus s) { return has_solution(s); }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

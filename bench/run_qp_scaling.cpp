@@ -50,7 +50,7 @@ struct Row {
   bool ok = false;
 };
 
-bool usable(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
+bool usable(QpStatus s) { return has_solution(s); }
 
 Row measure(Index n, std::uint64_t seed, double min_time, int max_reps) {
   const bench::RandomQp qp = bench::make_random_qp(n, seed);

@@ -1,6 +1,7 @@
 // LCPs through the interior-point QP (lcp/lcp_ipm.hpp): on monotone P-matrix LCPs
 // (M = BBᵀ + I + S, S skew; unique solution) it agrees with Lemke; on a non-monotone
 // LCP (M + Mᵀ indefinite) it does not claim a solution it has not found.
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lcp_ipm.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
@@ -34,8 +35,15 @@ TEST(LcpIpm, AgreesWithLemkeOnMonotoneLcps) {
 }
 
 // M = [[0, 1], [−3, 0]] + diag(−1, 0): M + Mᵀ = [[−2, −2], [−2, 0]] is indefinite.
-TEST(LcpIpm, NonMonotoneIsNotReportedSolvedWithoutASolution) {
+// M + Mᵀ with a negative diagonal entry cannot be monotone: InputError, no solve.
+TEST(LcpIpm, NegativeDiagonalOfTheSymmetricPartThrows) {
   const DenseMatrix M = (DenseMatrix(2, 2) << -1, 1, -3, 0).finished();
+  const Vector q = (Vector(2) << -1, 2).finished();
+  EXPECT_THROW(solve_lcp_ipm(M.sparseView(), q), InputError);
+}
+
+TEST(LcpIpm, NonMonotoneIsNotReportedSolvedWithoutASolution) {
+  const DenseMatrix M = (DenseMatrix(2, 2) << 0, 1, -3, 0).finished();
   const Vector q = (Vector(2) << -1, 2).finished();
   const LcpResult r = solve_lcp_ipm(M.sparseView(), q);
   if (r.info.status == LcpStatus::solved) {

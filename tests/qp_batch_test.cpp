@@ -14,6 +14,7 @@
 // - Against independent QpSolver solves only closeness (1e-9) is asserted: a thread's
 //   workspace reuses its analysis through update(), which need not be bitwise identical.
 // - Batch backward: dq equals a single solver's backward dq to 1e-9 (relative to ‖dq‖∞ ∨ 1).
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_batch.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 
@@ -142,19 +143,20 @@ TEST(QpBatch, BackwardMatchesSingleSolver) {
     EXPECT_TRUE((grads1[k].dq.array() == grads[k].dq.array()).all()) << "problem " << k;
 }
 
-// A missing loss gradient is reported per problem, not thrown.
-TEST(QpBatch, BackwardWithMissingLossGradient) {
+// A missing loss gradient is misuse of the API: InputError naming both counts.
+TEST(QpBatch, BackwardWithMissingLossGradientThrows) {
   std::vector<QpProblem> problems = make_batch();
   problems.resize(4);
   std::vector<Vector> dl_dx = make_loss_gradients(problems);
   dl_dx.resize(3);
   std::vector<QpResult> results;
   std::vector<QpGradient> grads;
-  solve_qp_batch_backward(problems, dl_dx, results, grads, QpSettings{}, 2);
-  ASSERT_EQ(results.size(), 4u);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(results[k].info.status, QpStatus::solved);
-  EXPECT_EQ(results[3].info.status, QpStatus::invalid_input);
-  EXPECT_EQ(grads[3].dq.size(), 0);
+  try {
+    solve_qp_batch_backward(problems, dl_dx, results, grads, QpSettings{}, 2);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("3 loss gradients for 4 problems"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

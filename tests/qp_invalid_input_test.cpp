@@ -1,6 +1,6 @@
 // Input errors of the QP solver: setup()/update()/warm_start() and the QpSolver constructor
 // throw lcprelax::InputError naming the offending field; backward() without a solution
-// throws std::logic_error; the batch API reports invalid_input per problem instead.
+// throws std::logic_error; the batch API throws InputError naming the problem index.
 #include <lcprelax/kkt/qp_batch.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/core/errors.hpp>
@@ -165,22 +165,23 @@ TEST(QpInvalidInput, BackwardBeforeSuccessfulSolve) {
   EXPECT_THROW(infeasible.backward(dl), std::logic_error);
 }
 
-TEST(QpInvalidInput, BatchReportsInvalidEntry) {
+TEST(QpInvalidInput, BatchThrowsNamingTheInvalidProblem) {
   std::vector<QpProblem> problems(4, valid_problem());
   problems[2].q(0) = kNaN;
   for (int threads : {1, 2}) {
     SCOPED_TRACE("threads " + std::to_string(threads));
-    const std::vector<QpResult> r = solve_qp_batch(problems, QpSettings{}, threads);
-    ASSERT_EQ(r.size(), problems.size());
-    for (size_t k = 0; k < r.size(); ++k) {
-      if (k == 2) {
-        EXPECT_EQ(r[k].info.status, QpStatus::invalid_input);
-        EXPECT_TRUE(names_field(r[k].info.message, "q")) << r[k].info.message;
-      } else {
-        EXPECT_EQ(r[k].info.status, QpStatus::solved) << k << ": " << r[k].info.message;
-      }
+    try {
+      solve_qp_batch(problems, QpSettings{}, threads);
+      FAIL() << "no exception";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("problems[2]: ", 0), 0u) << what;
+      EXPECT_TRUE(names_field(what, "q")) << what;
     }
   }
+  problems[2] = valid_problem();
+  const std::vector<QpResult> r = solve_qp_batch(problems, QpSettings{}, 2);
+  for (const QpResult& x : r) EXPECT_EQ(x.info.status, QpStatus::solved) << x.info.message;
 }
 
 }  // namespace

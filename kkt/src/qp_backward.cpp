@@ -41,7 +41,7 @@ void split_sides(const detail::Side& side, const Vector& dsigned, const Vector& 
 QpGradient QpSolver::backward(const Vector& dl_dx, const Vector& dl_dy, const Vector& dl_dz) {
   Impl& m = *impl_;
   const auto t0 = std::chrono::steady_clock::now();
-  if (m.result.info.status != QpStatus::solved && m.result.info.status != QpStatus::solved_inaccurate)
+  if (!has_solution(m.result.info.status))
     throw std::logic_error(std::string("QpSolver::backward needs a solved problem, status is ") +
                            to_string(m.result.info.status));
   const QpProblem& p = m.problem;
@@ -67,7 +67,7 @@ QpGradient QpSolver::backward(const Vector& dl_dx, const Vector& dl_dy, const Ve
   if (m.result.info.factorizations == 0) {  // see the header comment
     m.has_warm_start = false;
     const QpResult& cold = solve();
-    if (cold.info.status != QpStatus::solved && cold.info.status != QpStatus::solved_inaccurate)
+    if (!has_solution(cold.info.status))
       throw std::runtime_error(std::string("QpSolver::backward: the cold re-solve after a 0-iteration warm start "
                                            "failed: ") + to_string(cold.info.status));
   }

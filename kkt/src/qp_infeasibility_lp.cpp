@@ -22,7 +22,7 @@ QpSettings auxiliary_settings(const QpSettings& s) {
 }
 
 bool solved(const QpResult& r) {
-  return r.info.status == QpStatus::solved || r.info.status == QpStatus::solved_inaccurate;
+  return has_solution(r.info.status);
 }
 
 double inf_norm(const Vector& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }

@@ -89,12 +89,17 @@ void QpSolver::Impl::run(QpInfo& info) {
         return;
       }
     }
+    // A stalled run within 1e3·eps is solved_inaccurate; a limit is always its own status.
     auto give_up = [&](QpStatus status, const char* why) {
       info.status = within(res, settings, kInaccurateFactor) ? QpStatus::solved_inaccurate : status;
       if (info.message.empty()) info.message = why;
     };
-    if (info.iterations >= settings.max_iter) return give_up(QpStatus::max_iterations, "iteration limit reached");
-    if (seconds_since(t0) > settings.time_limit) return give_up(QpStatus::time_limit, "time limit reached");
+    auto stop_at_limit = [&](QpStatus status, const char* why) {
+      info.status = status;
+      if (info.message.empty()) info.message = why;
+    };
+    if (info.iterations >= settings.max_iter) return stop_at_limit(QpStatus::max_iterations, "iteration limit reached");
+    if (seconds_since(t0) > settings.time_limit) return stop_at_limit(QpStatus::time_limit, "time limit reached");
     const double merit = std::max({res.primal / (settings.eps_abs + settings.eps_rel * res.scale_p),
                                    res.dual / (settings.eps_abs + settings.eps_rel * res.scale_d),
                                    res.gap / (settings.eps_abs + settings.eps_rel * res.scale_g)});
@@ -207,7 +212,7 @@ const QpResult& QpSolver::solve() {
     m.conservative = true;
     m.run(second);
     m.conservative = false;
-    if (second.status == QpStatus::solved || second.status == QpStatus::solved_inaccurate) {
+    if (has_solution(second.status)) {
       second.iterations += first_info.iterations;
       second.refinement_steps += first_info.refinement_steps;
       second.message = std::string(to_string(second.status)) + " by the conservative second run (first run: " +

@@ -23,13 +23,9 @@ LcpResult solve_lcp_ipm(const SparseMatrix& M, const Vector& q, const QpSettings
   p.u = Vector::Constant(n, std::numeric_limits<double>::infinity());
   p.xl = Vector::Zero(n);
   for (Index j = 0; j < n; ++j)
-    if (sym.coeff(j, j) < 0) {
-      LcpResult bad;
-      bad.info.status = LcpStatus::invalid_input;
-      bad.info.message = "M + Mᵀ has a negative diagonal entry at " + std::to_string(j) +
-                         ": the LCP is not monotone, use Lemke";
-      return bad;
-    }
+    if (sym.coeff(j, j) < 0)
+      throw InputError("M + Mᵀ has a negative diagonal entry at " + std::to_string(j) +
+                       ": the LCP is not monotone, use Lemke");
   // The LCP residual is a per-component complementarity, the QP's gap their sum: solve the
   // QP two orders tighter than the LCP tolerance.
   QpSettings s = settings;
@@ -45,7 +41,7 @@ LcpResult solve_lcp_ipm(const SparseMatrix& M, const Vector& q, const QpSettings
   out.z_basic.resize(n);
   for (Index i = 0; i < n; ++i) out.z_basic[i] = out.z(i) > out.w(i);
   const double tol = 1e-9 * std::max(1.0, n ? q.lpNorm<Eigen::Infinity>() : 0.0);
-  const bool qp_ok = r.info.status == QpStatus::solved || r.info.status == QpStatus::solved_inaccurate;
+  const bool qp_ok = has_solution(r.info.status);
   if (qp_ok && out.info.complementarity <= tol) {
     out.info.status = LcpStatus::solved;
     out.info.message = "solved by the interior point";

@@ -146,7 +146,7 @@ struct LemkeSolver::Impl {
     Vector xB;
     if (!refactor(xB) || xB.minCoeff() < -tol) return false;
     extract_solution();
-    result.info.warm_started = result.info.status == LcpStatus::solved;
+    result.info.warm_started = has_solution(result.info.status);
     return result.info.warm_started;
   }
 
@@ -314,7 +314,7 @@ const LcpResult& LemkeSolver::result() const { return impl_->result; }
 
 LcpGradient LemkeSolver::backward(const Vector& dl_dz) const {
   const Impl& m = *impl_;
-  if (m.result.info.status != LcpStatus::solved)
+  if (!has_solution(m.result.info.status))
     throw std::logic_error(std::string("LemkeSolver::backward needs status solved, status is ") +
                            to_string(m.result.info.status));
   if (dl_dz.size() != m.n || !dl_dz.allFinite()) throw InputError("LCP backward: dl_dz must be finite, size n");

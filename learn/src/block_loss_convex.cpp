@@ -57,7 +57,7 @@ class BlockConvexObjective final : public BlockObjective {
     const QpResult& r = ws.solver.solve();
     timer.solve += since(t1);
     SampleResult out;
-    if (r.info.status != QpStatus::solved && r.info.status != QpStatus::solved_inaccurate) {
+    if (!has_solution(r.info.status)) {
       out.ok = false;
       out.message = std::string("convex QP: ") + to_string(r.info.status) + " (" + r.info.message + ")";
       return out;

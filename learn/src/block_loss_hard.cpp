@@ -39,7 +39,7 @@ class BlockHardObjective final : public BlockObjective {
     const LcpResult& r = solver.solve();
     timer.solve += since(t1);
     SampleResult out;
-    if (r.info.status != LcpStatus::solved) {
+    if (!has_solution(r.info.status)) {
       out.ok = false;
       out.message = std::string("Lemke: ") + to_string(r.info.status) + " (" + r.info.message + ")";
       return out;

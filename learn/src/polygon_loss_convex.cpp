@@ -20,7 +20,6 @@ constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};  // as convex_model.cpp
 
 using detail::since;
 
-bool accepted(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
 
 // Upper triangle of a dense symmetric matrix, every entry stored.
 SparseMatrix upper_full(const DenseMatrix& A) {
@@ -144,7 +143,7 @@ SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target_v,
   setup_or_update(s1, p1);
   if (settings.warm_start && warm.x1.size() == nc) s1.warm_start(warm.x1, warm.y1, warm.z1, warm.zb1);
   const QpResult& r1 = s1.solve();
-  if (!accepted(r1.info.status)) {
+  if (!has_solution(r1.info.status)) {
     r.ok = false;
     r.message = std::string("convex phase 1: ") + to_string(r1.info.status) + ": " + r1.info.message;
     times.solve += since(t0);
@@ -158,7 +157,7 @@ SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target_v,
     setup_or_update(s2, p2);
     if (settings.warm_start && warm.x2.size() == n && slack == kKappaSlack[0])
       s2.warm_start(warm.x2, warm.y2, warm.z2, warm.zb2);
-    if (accepted(s2.solve().info.status)) {
+    if (has_solution(s2.solve().info.status)) {
       ok2 = true;
       slack_used = slack;
       break;

@@ -37,7 +37,7 @@ SampleResult polygon_hard_loss(const PolygonAssembly& a, const Vec3& target, dou
     solver.setup(full_pattern(lcp.M), lcp.q);
     if (settings.warm_start && static_cast<Index>(warm.lemke_basis.size()) == n) solver.warm_start(warm.lemke_basis);
     const LcpResult& res = solver.solve();
-    if (res.info.status != LcpStatus::solved) {
+    if (!has_solution(res.info.status)) {
       r.ok = false;
       r.message = std::string("hard: Lemke ") + to_string(res.info.status) + ": " + res.info.message;
       times.solve += since(t0);

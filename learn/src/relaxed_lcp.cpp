@@ -368,7 +368,7 @@ const RelaxedLcpResult& RelaxedLcpSolver::solve(const RelaxedLcpData& data, bool
   m.res.solve_seconds = since(t1);
   m.res.qp_status = r.info.status;
   m.res.iterations = r.info.iterations;
-  if (r.info.status != QpStatus::solved && r.info.status != QpStatus::solved_inaccurate) {
+  if (!has_solution(r.info.status)) {
     m.res.status = RelaxedLcpStatus::qp_failed;
     m.res.message = std::string("relaxed QP: ") + to_string(r.info.status) + " (" + r.info.message + ")";
     return m.res;

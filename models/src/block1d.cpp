@@ -68,7 +68,7 @@ Block1dStep block1d_step_lcp(const Block1d& b, double v, double u, const LemkeSe
   const LcpResult& r = solver.solve();
   Block1dStep s;
   s.work = r.info.pivots;
-  if (r.info.status != LcpStatus::solved) {
+  if (!has_solution(r.info.status)) {
     s.message = std::string("Lemke: ") + to_string(r.info.status) + " (" + r.info.message + ")";
     return s;
   }
@@ -87,7 +87,7 @@ Block1dStep block1d_step_convex(const Block1d& b, double v, double u, double rho
   const QpResult& r = solver.solve();
   Block1dStep s;
   s.work = r.info.iterations;
-  if (r.info.status != QpStatus::solved) {
+  if (!has_solution(r.info.status)) {
     s.message = std::string("QP: ") + to_string(r.info.status) + " (" + r.info.message + ")";
     return s;
   }

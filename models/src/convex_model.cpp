@@ -18,7 +18,6 @@ namespace {
 // leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
 constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
 
-bool accepted(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
 
 }  // namespace
 
@@ -46,7 +45,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   qp1.setup(p1.problem);
   const QpResult& r1 = qp1.solve();
   out.work = r1.info.iterations;
-  if (!accepted(r1.info.status)) {
+  if (!has_solution(r1.info.status)) {
     out.message = std::string("phase 1: ") + to_string(r1.info.status) + ": " + r1.info.message;
     return out;
   }
@@ -68,10 +67,10 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
       qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
     r2 = qp2.solve();
     out.work += r2.info.iterations;
-    if (accepted(r2.info.status)) break;
+    if (has_solution(r2.info.status)) break;
   }
   out.residual = std::max(r2.info.primal_residual, r2.info.dual_residual);
-  if (!accepted(r2.info.status)) {
+  if (!has_solution(r2.info.status)) {
     // Not solved; phase 1's frictionless answer is returned with it (contact_step.hpp).
     out.message = std::string("phase 2: ") + to_string(r2.info.status) + ": " + r2.info.message;
     out.lambda_n = lambda1;

@@ -85,7 +85,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     pivots += res.info.pivots;
     return res;
   };
-  auto solved = [](const LcpResult* x) { return x && x->info.status == LcpStatus::solved; };
+  auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
   // 1. Exact: the warm basis on q, else cold.
   r = &attempt(plain, lcp.q, has_warm ? &warm : nullptr);
   // 2. Perturbed q + δu (warm basis, else cold), polished on q.

@@ -107,7 +107,7 @@ void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, 
   lemke.setup(Wnn, bound);
   const LcpResult& r = lemke.solve();
   Vector dq;
-  if (r.info.status == LcpStatus::solved) {
+  if (has_solution(r.info.status)) {
     dq = s.minv.cwiseProduct(s.Jn.transpose() * r.z);
   } else {
     // Primal, by the interior point: min ½ΔqᵀMΔq s.t. Jn Δq ≥ −bound. Strictly convex and
@@ -125,7 +125,7 @@ void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, 
     QpSolver qp(settings_.qp);
     qp.setup(p);
     const QpResult& rq = qp.solve();
-    if (rq.info.status != QpStatus::solved && rq.info.status != QpStatus::solved_inaccurate) {
+    if (!has_solution(rq.info.status)) {
       ++stats.failed_projections;  // positions stay as they are
       return;
     }

@@ -11,16 +11,17 @@
 
 namespace lcprelax {
 
+/// The outcome of a solve. Misuse of the API (setup() not called, wrong sizes, NaN data,
+/// invalid settings) is not a status: it throws InputError.
 enum class QpStatus {
   unsolved,           ///< solve() was not called
   solved,             ///< residuals and gap within eps
-  solved_inaccurate,  ///< stalled within 1e3·eps (use the result at your own judgement)
+  solved_inaccurate,  ///< the iteration stalled (no progress) with residuals and gap within 1e3·eps
   primal_infeasible,  ///< certificate in QpResult::y, z, z_bounds (see below)
   dual_infeasible,    ///< certificate (an unbounded direction) in QpResult::x
-  max_iterations,
-  time_limit,
-  numerical_error,    ///< the KKT system could not be factorized even with regularization
-  invalid_input       ///< data or settings rejected (batch API; setup() throws instead)
+  max_iterations,     ///< QpSettings::max_iter reached before eps (x is the last iterate)
+  time_limit,         ///< QpSettings::time_limit reached before eps (x is the last iterate)
+  numerical_error     ///< stalled above 1e3·eps, or the KKT system could not be factorized
 };
 
 constexpr const char* to_string(QpStatus s) {
@@ -33,10 +34,13 @@ constexpr const char* to_string(QpStatus s) {
     case QpStatus::max_iterations: return "max_iterations";
     case QpStatus::time_limit: return "time_limit";
     case QpStatus::numerical_error: return "numerical_error";
-    case QpStatus::invalid_input: return "invalid_input";
   }
   return "unknown";
 }
+
+/// Whether a result with this status carries a usable solution (solved, or solved to
+/// 1e3·eps where the iteration stalled); the one test every caller uses.
+constexpr bool has_solution(QpStatus s) { return s == QpStatus::solved || s == QpStatus::solved_inaccurate; }
 
 struct QpInfo {
   static constexpr double nan = std::numeric_limits<double>::quiet_NaN();

@@ -14,13 +14,14 @@
 
 namespace lcprelax {
 
+/// The outcome of a solve. Misuse (wrong sizes, NaN data, invalid settings) is not a status:
+/// it throws InputError.
 enum class LcpStatus {
   unsolved,         ///< solve() was not called
   solved,           ///< complementary basis found, residual within tolerance
   ray_termination,  ///< Lemke's ray: no solution found (infeasible, or M outside the classes Lemke covers)
   pivot_limit,      ///< stopped at LemkeSettings::max_pivots
-  numerical_error,  ///< singular basis or residual above tolerance after refactorization
-  invalid_input     ///< batch use; setup() throws InputError instead
+  numerical_error   ///< singular basis or residual above tolerance after refactorization
 };
 
 constexpr const char* to_string(LcpStatus s) {
@@ -30,10 +31,13 @@ constexpr const char* to_string(LcpStatus s) {
     case LcpStatus::ray_termination: return "ray_termination";
     case LcpStatus::pivot_limit: return "pivot_limit";
     case LcpStatus::numerical_error: return "numerical_error";
-    case LcpStatus::invalid_input: return "invalid_input";
   }
   return "unknown";
 }
+
+/// Whether a result with this status carries a usable solution (z, w complementary within
+/// the residual tolerance).
+constexpr bool has_solution(LcpStatus s) { return s == LcpStatus::solved; }
 
 /// How Lemke's basis is factorized (lemke.hpp): dense explicit inverse (O(n²) memory,
 /// fast for small n) or sparse KLU LU with block updates (O(nnz) memory).
