@@ -1,5 +1,5 @@
 #pragma once
-// Shared pieces of the lcprelax command line (DESIGN §4): exit codes, the way a subcommand
+// Shared pieces of the lcprelax command line (docs/cli.md): exit codes, the way a subcommand
 // plugs into main(), and JSON output helpers. A subcommand lives in its own cmd_<name>.cpp
 // and exposes one add_<name>_command(); main.cpp lists them.
 //
@@ -21,7 +21,7 @@
 
 namespace lcprelax::cli {
 
-/// JSON object whose keys keep insertion order (the order of the DESIGN §4 contract).
+/// JSON object whose keys keep insertion order (the order of the docs/cli.md contract).
 using Json = nlohmann::ordered_json;
 
 enum ExitCode : int {
@@ -47,7 +47,7 @@ Command add_fc2d_command(CLI::App& parent);
 /// `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex] [--threads T] [--picture OUT] ...`.
 Command add_pile_command(CLI::App& parent);
 
-/// `lcprelax learn block|polygon ...` (DESIGN §4). Each learning application lives in its
+/// `lcprelax learn block|polygon ...` (docs/cli.md). Each learning application lives in its
 /// own cmd_learn_<name>.cpp and registers a factory that adds its sub-subcommand to the
 /// `learn` app, by a namespace-scope `const bool registered = register_learn_application(f);`.
 using LearnApplicationFactory = Command (*)(CLI::App& learn);

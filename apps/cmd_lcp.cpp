@@ -1,5 +1,5 @@
 // `lcprelax lcp FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` and
-// `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` (DESIGN §4):
+// `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` (docs/cli.md):
 // Siconos numerics problems, errors as Siconos defines them (io/siconos_errors.hpp).
 // lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds; OUT: z, w.
 // fc2d JSON: status, contacts, error, seconds; OUT: r, u (u = W r + q). fc2d is solved as

@@ -1,6 +1,6 @@
 // `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex] [--threads T]
 //  [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json] [--export-fc2d FILE]
-//  [--json]` (DESIGN §4): random convex polygons dropped into a container (or a scene
+//  [--json]` (docs/cli.md): random convex polygons dropped into a container (or a scene
 // file), simulated with models/simulator.hpp.
 // JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
 // (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
@@ -67,7 +67,7 @@ int run_pile(const PileCliOptions& o) {
   const double e0 = sim.total_energy();
   double energy = e0, max_gain = -std::numeric_limits<double>::infinity(), max_pen = 0.0, max_res = 0.0;
   int contacts_max = 0;
-  long failed = 0;
+  long failed = 0, inaccurate = 0;
   std::string first_failure;
   const Stopwatch watch;
   for (int k = 0; k < o.steps; ++k) {
@@ -86,6 +86,7 @@ int run_pile(const PileCliOptions& o) {
     contacts_max = std::max(contacts_max, st.contacts);
     if (st.failed_islands > 0 && failed == 0) first_failure = st.first_failure;
     failed += st.failed_islands;
+    inaccurate += st.inaccurate_islands;
     if (!o.frames.empty() && k % o.frame_every == 0)
       write_frame(o.frames, k / o.frame_every, sim.world(), sim.contacts(), picture_options(o));
     if (progress && (k % 10 == 0 || k + 1 == o.steps)) {
@@ -108,6 +109,7 @@ int run_pile(const PileCliOptions& o) {
   j["max_energy_gain"] = o.steps > 0 ? number_or_null(max_gain) : Json(0.0);
   j["model"] = o.model;
   j["failed_islands"] = failed;
+  j["inaccurate_islands"] = inaccurate;
   j["seconds"] = seconds;
   if (!o.picture.empty()) j["picture"] = o.picture;
   if (o.json) {

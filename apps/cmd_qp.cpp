@@ -1,9 +1,9 @@
 // `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--solution OUT.json] [--json]`
-// (DESIGN §4): reads a QPS file, solves it with the interior-point QP and reports status,
+// (docs/cli.md): reads a QPS file, solves it with the interior-point QP and reports status,
 // objective, iterations, residuals, duality gap and the setup + solve wall time. With
 // --solution, OUT.json holds `x`, `y_rows` (one multiplier per constraint row of the file,
 // QpResult::z, since the reader puts every row in G) and `y_bounds` (QpResult::z_bounds),
-// signed as in DESIGN §3 (Px + q + Cᵀy_rows + y_bounds = 0).
+// signed as in docs/conventions.md (Px + q + Cᵀy_rows + y_bounds = 0).
 #include "cli_common.hpp"
 
 #include <lcprelax/io/qps_reader.hpp>

@@ -1,4 +1,4 @@
-// lcprelax command line (DESIGN §4). Each subcommand registers itself through an
+// lcprelax command line (docs/cli.md). Each subcommand registers itself through an
 // add_<name>_command() declared in cli_common.hpp; main() parses, runs the selected one and
 // maps failures to exit codes: 0 solved, 1 solve failed, 2 bad input (message on stderr).
 #include "cli_common.hpp"

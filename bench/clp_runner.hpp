@@ -15,7 +15,7 @@
 //   constant term), m row activities, m row duals π, n column values, n reduced costs d;
 // - the log's "Optimal objective V - K iterations time T" gives Clp's own solve time
 //   (import excluded).
-// Clp's duals satisfy Px + q − Gᵀπ − d = 0, so in lcprelax's convention (DESIGN §3)
+// Clp's duals satisfy Px + q − Gᵀπ − d = 0, so in lcprelax's convention (docs/conventions.md)
 // z = −π and z_bounds = −d (checked by hand on HS21 and QAFIRO: an active ≤ row has π < 0,
 // a variable at its lower bound has d > 0).
 #include <algorithm>

@@ -4,7 +4,7 @@
 //   primal  max(‖Ax − b‖, ‖dist(Gx, [l,u])‖, ‖dist(x, [xl,xu])‖)
 //   dual    ‖Px + q + Aᵀy + Gᵀz + z_bounds‖
 //   gap     |xᵀPx + qᵀx + bᵀy + σ(z) + σ(z_bounds)|,  σ(z) = Σ u_i z_i⁺ + l_i z_i⁻
-// (z⁺ = max(z, 0), z⁻ = min(z, 0); DESIGN §3 sign convention: z > 0 at an active upper
+// (z⁺ = max(z, 0), z⁻ = min(z, 0); docs/conventions.md sign convention: z > 0 at an active upper
 // side). A term of σ whose bound is infinite is skipped: a multiplier pushing against an
 // infinite bound is dual infeasibility that the stationarity residual alone does not
 // measure (the multiplier sign is reported separately as sign_violation).

@@ -1,5 +1,5 @@
 // Maros–Meszaros report: lcprelax's interior-point QP and COIN-OR Clp's barrier side by
-// side on every .qps file of a directory, at high accuracy (DESIGN §5).
+// side on every .qps file of a directory, at high accuracy (1e-9).
 //
 //   run_maros_meszaros DIR [--out results.csv] [--time-limit SEC] [--eps 1e-9]
 //                          [--clp PATH_TO_CLP | --no-clp]

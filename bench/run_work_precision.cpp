@@ -1,4 +1,4 @@
-// Work-precision data (issue 6, "error against run time"): solution error against run
+// Work-precision data: solution error against run
 // time for the interior point at a sweep of tolerances, Lemke, the interior-point LCP,
 // Clp's barrier, and the pile's trajectory error against a tightly solved reference.
 //

@@ -79,7 +79,7 @@ SiconosResult siconos_lcp_lemke(const SparseMatrix& M, const Vector& q, long max
   problem.M = Md.get();
   problem.q = q_copy.data();
   // The tolerance only decides the driver's final error check (filterOn): info = 0 iff
-  // Siconos' own LCP error ≤ 1e-10, the DESIGN §5 target.
+  // Siconos' own LCP error ≤ 1e-10, the target accuracy.
   OptionsPtr options = make_options(SICONOS_LCP_LEMKE, max_pivots, 1e-10);
   SiconosResult r;
   r.x = Vector::Zero(q.size());

@@ -1,4 +1,4 @@
-// `lcprelax lcp` and `lcprelax fc2d` end to end (DESIGN §4): JSON fields, Siconos errors,
+// `lcprelax lcp` and `lcprelax fc2d` end to end (docs/cli.md): JSON fields, Siconos errors,
 // solution files, and exit codes 0 (solved), 1 (ray termination), 2 (bad input).
 #include "cli_support.hpp"
 

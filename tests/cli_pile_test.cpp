@@ -1,4 +1,4 @@
-// `lcprelax pile` (DESIGN §4): the JSON contract on a small pile with both contact models,
+// `lcprelax pile` (docs/cli.md): the JSON contract on a small pile with both contact models,
 // a picture file, the fc2d export, a scene file, and bad input (exit 2, nothing on stdout).
 #include "cli_support.hpp"
 

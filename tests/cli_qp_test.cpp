@@ -1,4 +1,4 @@
-// `lcprelax qp` end to end (DESIGN §4): runs the built executable on HS21 and on bad input,
+// `lcprelax qp` end to end (docs/cli.md): runs the built executable on HS21 and on bad input,
 // parses its JSON, and checks exit codes (0 solved, 2 bad input with nothing on stdout).
 #include "cli_support.hpp"
 

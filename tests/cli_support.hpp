@@ -1,6 +1,6 @@
 #pragma once
 // Runs the built `lcprelax` executable for the CLI tests: stdout captured by popen, stderr
-// by a temporary file, and the exit code (DESIGN §4: 0 solved, 1 solve failed, 2 bad input).
+// by a temporary file, and the exit code (docs/cli.md: 0 solved, 1 solve failed, 2 bad input).
 #include <sys/wait.h>
 #include <unistd.h>
 

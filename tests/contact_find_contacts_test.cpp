@@ -36,7 +36,7 @@ RigidBody random_polygon(std::mt19937& rng, const Vec2& where, double radius) {
     Polygon p;
     const double rx = radius * (0.6 + 0.4 * u(rng)), ry = radius * (0.6 + 0.4 * u(rng));
     for (double a : angle) p.vertices.emplace_back(rx * std::cos(a), ry * std::sin(a));
-    if (validate_polygon(p).empty()) return make_body(p, 1.0, Vec3(where.x(), where.y(), 2 * M_PI * u(rng)));
+    if (polygon_validation_error(p).empty()) return make_body(p, 1.0, Vec3(where.x(), where.y(), 2 * M_PI * u(rng)));
   }
 }
 

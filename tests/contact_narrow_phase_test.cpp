@@ -229,7 +229,7 @@ RigidBody random_polygon(std::mt19937& rng, const Vec2& where) {
     const double rx = 0.05 + 0.2 * u(rng), ry = 0.05 + 0.2 * u(rng);
     Polygon p;
     for (double a : angle) p.vertices.emplace_back(rx * std::cos(a), ry * std::sin(a));
-    if (!validate_polygon(p).empty()) continue;  // too thin or nearly collinear: retry
+    if (!polygon_validation_error(p).empty()) continue;  // too thin or nearly collinear: retry
     return make_body(p, 1.0, Vec3(where.x(), where.y(), 2 * M_PI * u(rng)));
   }
 }

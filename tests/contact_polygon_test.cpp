@@ -24,44 +24,44 @@ Polygon regular(int n, double r) {
 }
 
 TEST(ContactPolygon, ValidPolygonsPass) {
-  EXPECT_EQ(validate_polygon(unit_square()), "");
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {3, 0}, {0, 4}})), "");
-  EXPECT_EQ(validate_polygon(regular(12, 0.1)), "");
-  EXPECT_EQ(validate_polygon(regular(3, 1e-4)), "");  // tolerances are relative
+  EXPECT_EQ(polygon_validation_error(unit_square()), "");
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {3, 0}, {0, 4}})), "");
+  EXPECT_EQ(polygon_validation_error(regular(12, 0.1)), "");
+  EXPECT_EQ(polygon_validation_error(regular(3, 1e-4)), "");  // tolerances are relative
 }
 
 TEST(ContactPolygon, ClockwiseIsRejected) {
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {0, 1}, {1, 1}, {1, 0}})), "vertices are clockwise");
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {0, 1}, {1, 1}, {1, 0}})), "vertices are clockwise");
 }
 
 TEST(ContactPolygon, NonConvexNamesTheVertex) {
   // Vertex 3 (the dent at (0.5, 0.5)) turns right.
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {1, 0}, {1, 1}, {0.5, 0.5}, {0, 1}})),
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {1, 0}, {1, 1}, {0.5, 0.5}, {0, 1}})),
             "vertex 3 makes the polygon non-convex");
   // A collinear middle vertex is not strictly convex.
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}})),
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}})),
             "vertex 1 makes the polygon non-convex");
 }
 
 TEST(ContactPolygon, VertexCountLimits) {
-  EXPECT_NE(validate_polygon(poly({{0, 0}, {1, 0}})).find("at least 3"), std::string::npos);
-  EXPECT_NE(validate_polygon(Polygon{}).find("at least 3"), std::string::npos);
-  EXPECT_NE(validate_polygon(regular(13, 1.0)).find("at most 12"), std::string::npos);
+  EXPECT_NE(polygon_validation_error(poly({{0, 0}, {1, 0}})).find("at least 3"), std::string::npos);
+  EXPECT_NE(polygon_validation_error(Polygon{}).find("at least 3"), std::string::npos);
+  EXPECT_NE(polygon_validation_error(regular(13, 1.0)).find("at most 12"), std::string::npos);
 }
 
 TEST(ContactPolygon, NonFiniteAndDegenerate) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {1, nan}, {0, 1}})), "vertex 1 is not finite");
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {1, 0}, {HUGE_VAL, 1}})), "vertex 2 is not finite");
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {1, 0}, {1, 0}, {0, 1}})), "vertices 1 and 2 coincide");
-  EXPECT_EQ(validate_polygon(poly({{0, 0}, {1, 0}, {2, 1e-12}})), "polygon has zero area");
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {1, nan}, {0, 1}})), "vertex 1 is not finite");
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {1, 0}, {HUGE_VAL, 1}})), "vertex 2 is not finite");
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {1, 0}, {1, 0}, {0, 1}})), "vertices 1 and 2 coincide");
+  EXPECT_EQ(polygon_validation_error(poly({{0, 0}, {1, 0}, {2, 1e-12}})), "polygon has zero area");
 }
 
 TEST(ContactPolygon, SelfIntersectingStarIsRejected) {
   // Pentagram: every turn is to the left but the boundary winds twice.
   Polygon star;
   for (int i = 0; i < 5; ++i) star.vertices.emplace_back(std::cos(4 * M_PI * i / 5), std::sin(4 * M_PI * i / 5));
-  EXPECT_EQ(validate_polygon(star), "polygon winds more than once (self-intersecting)");
+  EXPECT_EQ(polygon_validation_error(star), "polygon winds more than once (self-intersecting)");
 }
 
 TEST(ContactPolygon, UnitSquareMassProperties) {

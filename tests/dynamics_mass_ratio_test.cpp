@@ -56,6 +56,7 @@ TEST_P(MassRatio, HeavyPlankOnSmallBoxesStaysAtRest) {
     } else if (st.failed_islands > 0) {
       ASSERT_NE(st.first_failure.find("lcp model used"), std::string::npos) << "step " << k << ": " << st.first_failure;
     }
+    ASSERT_EQ(st.solved_islands + st.inaccurate_islands + st.failed_islands, st.islands) << "step " << k;
     failed += st.failed_islands;
     penetration = std::max(penetration, st.max_penetration);
     drift = std::max(drift, test::max_drift(sim.world(), start));
@@ -64,6 +65,7 @@ TEST_P(MassRatio, HeavyPlankOnSmallBoxesStaysAtRest) {
               to_string(model), ratio, drift, penetration, failed);
   EXPECT_LT(drift, 1e-6);
   EXPECT_LT(penetration, 1e-4);
+  if (known_failure) EXPECT_GT(failed, 0) << "the known phase-2 failure no longer occurs: update this test";
 }
 
 INSTANTIATE_TEST_SUITE_P(LcpAndConvex, MassRatio,

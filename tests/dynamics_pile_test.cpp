@@ -36,6 +36,7 @@ TEST_P(ClosedPile, TotalEnergyNeverIncreases) {
   for (int k = 0; k < 300; ++k) {
     const StepStats st = sim.step();
     ASSERT_EQ(st.failed_islands, 0) << "step " << k << ": " << st.first_failure;
+    ASSERT_EQ(st.solved_islands + st.inaccurate_islands + st.failed_islands, st.islands) << "step " << k;
     contacts_max = std::max(contacts_max, st.contacts);
     const double next = sim.total_energy();
     if (next - e > largest_gain) {

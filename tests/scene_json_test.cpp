@@ -170,7 +170,7 @@ TEST(SceneJson, ContactModelText) {
 }
 
 TEST(SceneJson, PolygonErrorsNameTheBody) {
-  // The messages are validate_polygon's (contact/polygon.hpp), prefixed by the field path.
+  // The messages are polygon_validation_error's (contact/polygon.hpp), prefixed by the field path.
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [0, 1], [1, 0]]"),
                {"bodies[1].vertices: vertices are clockwise"});
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [2, 0], [0.5, 0.5], [0, 2]]"),

@@ -80,7 +80,7 @@ void expect_valid_pile(const Scene& s, const PileOptions& o) {
     const int n = static_cast<int>(b.shape.vertices.size());
     EXPECT_GE(n, o.min_vertices);
     EXPECT_LE(n, o.max_vertices);
-    EXPECT_EQ(validate_polygon(b.shape), "");
+    EXPECT_EQ(polygon_validation_error(b.shape), "");
     const MassProperties m = mass_properties(b.shape, o.density);
     EXPECT_LT(m.centroid.norm(), 1e-12);
     EXPECT_NEAR(b.mass, m.mass, 1e-12 * m.mass);

@@ -16,13 +16,13 @@ constexpr double kPi = 3.14159265358979323846;
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 void require_valid(const Polygon& polygon) {
-  const std::string error = validate_polygon(polygon);
+  const std::string error = polygon_validation_error(polygon);
   if (!error.empty()) throw InputError("invalid polygon: " + error);
 }
 
 }  // namespace
 
-std::string validate_polygon(const Polygon& polygon) {
+std::string polygon_validation_error(const Polygon& polygon) {
   const std::vector<Vec2>& v = polygon.vertices;
   const int n = static_cast<int>(v.size());
   std::ostringstream os;
@@ -106,7 +106,7 @@ MassProperties mass_properties(const Polygon& polygon, double density) {
 Vec2 recentre(Polygon& polygon) {
   const Vec2 c = mass_properties(polygon, 1.0).centroid;
   std::vector<Vec2>& v = polygon.vertices;
-  double size = 0.0;  // L, as in validate_polygon
+  double size = 0.0;  // L, as in polygon_validation_error
   for (const Vec2& p : v) size = std::max(size, (p - v[0]).norm());
   if (c.norm() <= kCentredTolerance * size) return Vec2::Zero();
   for (Vec2& p : v) p -= c;

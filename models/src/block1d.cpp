@@ -69,10 +69,11 @@ Block1dStep block1d_step_lcp(const Block1d& b, double v, double u, const LemkeSe
   Block1dStep s;
   s.work = r.info.pivots;
   if (!has_solution(r.info.status)) {
+    s.status = ContactStatus::failed;
     s.message = std::string("Lemke: ") + to_string(r.info.status) + " (" + r.info.message + ")";
     return s;
   }
-  s.ok = true;
+  s.status = ContactStatus::solved;
   s.z = r.z;
   s.z_basic = r.z_basic;
   s.lambda = r.z(0) - r.z(1);
@@ -88,10 +89,11 @@ Block1dStep block1d_step_convex(const Block1d& b, double v, double u, double rho
   Block1dStep s;
   s.work = r.info.iterations;
   if (!has_solution(r.info.status)) {
+    s.status = ContactStatus::failed;
     s.message = std::string("QP: ") + to_string(r.info.status) + " (" + r.info.message + ")";
     return s;
   }
-  s.ok = true;
+  s.status = r.info.status == QpStatus::solved ? ContactStatus::solved : ContactStatus::solved_inaccurate;
   s.z = r.x;
   s.lambda = r.x(0);
   s.v_next = block1d_next_velocity(b, v, u, s.lambda);

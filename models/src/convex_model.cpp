@@ -31,7 +31,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // interior to work in there, so this case is answered directly.
   const Vector bn = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
   if (nc == 0 || bn.minCoeff() >= 0.0) {
-    out.ok = true;
+    out.status = ContactStatus::solved;
     out.lambda_n = Vector::Zero(nc);
     out.lambda_t = Vector::Zero(nf);
     out.v_next = s.v_star;
@@ -46,6 +46,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   const QpResult& r1 = qp1.solve();
   out.work = r1.info.iterations;
   if (!has_solution(r1.info.status)) {
+    out.status = ContactStatus::failed;
     out.message = std::string("phase 1: ") + to_string(r1.info.status) + ": " + r1.info.message;
     return out;
   }
@@ -72,13 +73,16 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   out.residual = std::max(r2.info.primal_residual, r2.info.dual_residual);
   if (!has_solution(r2.info.status)) {
     // Not solved; phase 1's frictionless answer is returned with it (contact_step.hpp).
+    out.status = ContactStatus::failed;
     out.message = std::string("phase 2: ") + to_string(r2.info.status) + ": " + r2.info.message;
     out.lambda_n = lambda1;
     out.lambda_t = Vector::Zero(nf);
     out.v_next = s.v_star + s.minv.cwiseProduct(s.Jn.transpose() * out.lambda_n);
     return out;
   }
-  out.ok = true;
+  const bool exact = r1.info.status == QpStatus::solved && r2.info.status == QpStatus::solved;
+  out.status = exact ? ContactStatus::solved : ContactStatus::solved_inaccurate;
+  if (!exact) out.message = "a phase stalled within 1e3·eps (solved_inaccurate)";
   out.lambda_n = r2.x.segment(p2.lambda_offset, nc).cwiseMax(0.0);
   out.lambda_t = r2.x.segment(p2.lambda_offset + nc, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;

@@ -104,13 +104,14 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   if (!solved(r)) r = &attempt(settings, lcp.q, nullptr);
 
   ContactSolution out;
-  out.ok = solved(r);
-  out.message = !out.ok ? "lcp: " + r->info.message
-                        : perturbed ? std::string("solved on a perturbed q (polishing on q failed)") : r->info.message;
+  out.status = !solved(r) ? ContactStatus::failed : perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;
+  out.message = !solved(r)  ? "lcp: " + r->info.message
+                : perturbed ? std::string("solved on a perturbed q (polishing on q failed)")
+                            : r->info.message;
   out.work = pivots;
   out.z_basic = r->z_basic;
   out.warm_started = pivots == 0 && r->info.warm_started;  // attempt 1 from its warm basis
-  if (!out.ok) {
+  if (!has_solution(out.status)) {
     out.residual = r->info.complementarity;
     return out;
   }

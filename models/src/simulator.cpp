@@ -202,27 +202,29 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       } else {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
       }
-      if (!wk.solution.ok && lcp) {  // fallback: the convex model (interior point)
+      // A fallback's answer is used, but the island still counts as failed.
+      if (!has_solution(wk.solution.status) && lcp) {  // fallback: the convex model (interior point)
         ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
-        fallback.message = wk.solution.message + (fallback.ok ? "; convex model used" : "; convex fallback: " + fallback.message);
+        fallback.message = wk.solution.message + (has_solution(fallback.status) ? "; convex model used"
+                                                                                : "; convex fallback: " + fallback.message);
         fallback.residual = std::max(fallback.residual, wk.solution.residual);
         wk.solution = std::move(fallback);
-        wk.solution.ok = false;
+        wk.solution.status = ContactStatus::failed;
       }
-      if (!wk.solution.ok && !lcp && s.num_contacts() <= kConvexFallbackMaxContacts) {
+      if (!has_solution(wk.solution.status) && !lcp && s.num_contacts() <= kConvexFallbackMaxContacts) {
         // fallback: the Stewart–Trinkle LCP (Lemke, cold), kept only if Lemke solves it
         ContactSolution fallback = solve_lcp_model(s, dt, settings_.lemke, {});
-        if (fallback.ok) {
+        if (has_solution(fallback.status)) {
           fallback.message = wk.solution.message + "; lcp model used";
           fallback.residual = std::max(fallback.residual, wk.solution.residual);
           fallback.work += wk.solution.work;
           fallback.z_basic.clear();
           wk.solution = std::move(fallback);
-          wk.solution.ok = false;
+          wk.solution.status = ContactStatus::failed;
         }
       }
       // Last resort: a failed convex solve's frictionless phase-1 velocities, else v*.
-      if (!wk.solution.ok && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;
+      if (!has_solution(wk.solution.status) && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;
     } catch (const std::exception& e) {
       wk.error = e.what();
     }
@@ -245,7 +247,14 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     stats.largest_island_unknowns = std::max<int>(stats.largest_island_unknowns,
                                                   static_cast<int>(s.num_contacts() + (lcp ? 3 : 1) * s.num_friction()));
     if (sol.warm_started) ++stats.warm_started_islands;
-    if (!sol.ok && ++stats.failed_islands == 1) stats.first_failure = sol.message;
+    switch (sol.status) {
+      case ContactStatus::solved: ++stats.solved_islands; break;
+      case ContactStatus::solved_inaccurate:
+        if (++stats.inaccurate_islands == 1) stats.first_inaccurate = sol.message;
+        break;
+      default:
+        if (++stats.failed_islands == 1) stats.first_failure = sol.message;
+    }
     const Index nc = s.num_contacts(), nf = s.num_friction();
     if (lcp && static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       for (Index c = 0; c < nc; ++c) next_warm[keys[s.contacts[c]]].normal = sol.z_basic[c];

@@ -73,9 +73,9 @@ Polygon random_polygon(Draw& draw, int n, double r) {
       const double a = phase + 2.0 * kPi * (k + draw.uniform(-kAngleJitter, kAngleJitter)) / n;
       p.vertices.emplace_back(r * std::cos(a), r * std::sin(a));
     }
-    if (validate_polygon(p).empty()) return p;
+    if (polygon_validation_error(p).empty()) return p;
   }
-  throw std::logic_error("make_pile_scene: no valid polygon drawn: " + validate_polygon(p));
+  throw std::logic_error("make_pile_scene: no valid polygon drawn: " + polygon_validation_error(p));
 }
 
 Scene base_scene(double mu, std::string name) {

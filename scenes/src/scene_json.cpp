@@ -22,10 +22,10 @@ using scene_json::member;
 
 constexpr long long kMaxInt = INT_MAX;
 
-// validate_polygon, as an InputError "PATH: message" ("bodies[3].vertices: vertices are
+// polygon_validation_error, as an InputError "PATH: message" ("bodies[3].vertices: vertices are
 // clockwise").
 void check_polygon(const Polygon& polygon, const std::string& path) {
-  const std::string error = validate_polygon(polygon);
+  const std::string error = polygon_validation_error(polygon);
   if (!error.empty()) fail(path, error);
 }
 

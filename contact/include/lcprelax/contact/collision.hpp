@@ -13,7 +13,7 @@
 // Order: sorted by (body_a, body_b, static_kind, static_index, point.x, point.y); the
 // result depends only on the world, not on memory layout or timing.
 //
-// Preconditions: body polygons are valid (validate_polygon; checked here only for the
+// Preconditions: body polygons are valid (polygon_validation_error; checked here only for the
 // vertex count and finiteness), static bodies are never paired with each other.
 #include <lcprelax/world/world.hpp>
 

@@ -25,7 +25,7 @@ struct ConvexShape {
 
 /// The body's polygon placed at its pose. Requires 3..12 vertices (throws InputError
 /// otherwise); convexity and orientation are the caller's responsibility
-/// (validate_polygon).
+/// (polygon_validation_error).
 ConvexShape make_shape(const RigidBody& body);
 
 /// A segment as a two-vertex shape. Throws InputError for a zero-length or non-finite

@@ -34,7 +34,7 @@ constexpr int kMinPolygonVertices = 3;
 /// strictly convex, simple, non-degenerate area); else a message naming the first problem,
 /// e.g. "vertex 3 makes the polygon non-convex" or "vertices are clockwise".
 /// Does not require the centroid at the origin (see recentred()).
-std::string validate_polygon(const Polygon& polygon);
+std::string polygon_validation_error(const Polygon& polygon);
 
 struct MassProperties {
   double area = 0.0;                 ///< m² (> 0 for a valid polygon)
@@ -44,7 +44,7 @@ struct MassProperties {
 };
 
 /// Mass properties of a uniform polygon of area density `density` (kg/m²).
-/// Throws InputError if the polygon is invalid (validate_polygon) or density is not
+/// Throws InputError if the polygon is invalid (polygon_validation_error) or density is not
 /// finite and > 0.
 MassProperties mass_properties(const Polygon& polygon, double density);
 

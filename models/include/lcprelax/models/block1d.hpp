@@ -22,13 +22,14 @@
 //     0 ≤ λ⁻ ⊥ −v⁺ + γ        ≥ 0
 //     0 ≤ γ  ⊥  μmg − λ⁺ − λ⁻ ≥ 0,
 // i.e. M = [[1/m, −1/m, 1], [−1/m, 1/m, 1], [−1, −1, 0]], q = (v*, −v*, μmg), solved by
-// Lemke (lcp/lemke.hpp). As the convex model (DESIGN §1.4 without a normal phase):
+// Lemke (lcp/lemke.hpp). As the convex model (contact_step.hpp, without a normal phase):
 //     min_λ ½(1 + ρ)λ²/m + λ v*   s.t.  −μmg ≤ λ ≤ μmg,
 // solved by the interior-point QP (kkt/qp_solver.hpp); ρ ≥ 0 is the L2 penalty on the
 // impulse (dimensionless, scaled by the block's inverse mass like the 2-D convex model's
 // diag(Wnn)); ρ = 0 is exactly maximum dissipation and agrees with the LCP.
 #include <lcprelax/kkt/qp_problem.hpp>
 #include <lcprelax/kkt/qp_settings.hpp>
+#include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/sparse/types.hpp>
 
@@ -62,8 +63,8 @@ double block1d_exact_impulse(const Block1d& block, double v, double u);
 double block1d_next_velocity(const Block1d& block, double v, double u, double lambda);
 
 struct Block1dStep {
-  bool ok = false;
-  std::string message;          ///< solver status when !ok
+  ContactStatus status = ContactStatus::unsolved;  ///< solved, solved_inaccurate (QP) or failed
+  std::string message;          ///< solver status when it has no solution
   double lambda = 0.0;          ///< friction impulse, N·s
   double v_next = 0.0;          ///< m/s
   Vector z;                     ///< LCP: (λ⁺, λ⁻, γ); convex: (λ)

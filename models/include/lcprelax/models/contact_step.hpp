@@ -1,6 +1,6 @@
 #pragma once
 // One island's contact impulses for a velocity-level time step, by either contact model
-// (DESIGN §1.4). Δt in s, impulses in N·s, velocities in m/s and rad/s.
+// (docs/formulations.md). Δt in s, impulses in N·s, velocities in m/s and rad/s.
 //
 // Both models use the gap term max(φ, 0)/Δt: a contact inside the margin may close its
 // gap during the step but never gets a push-out velocity from a penetration (that would
@@ -15,38 +15,34 @@
 // an LCP in z with M assembled sparse from W = J M⁻¹ Jᵀ, solved by Lemke.
 //   Resting stacks and pyramids make this LCP highly degenerate (q = 0 on every friction
 //   row and on the normal rows between bodies that fall together; W singular where there
-//   are more contact rows than degrees of freedom), and from a cold start Lemke then often
-//   ends on a secondary ray or a singular basis by roundoff (measured: every pyramid of
-//   10 × 1 m boxes and more). solve_lcp_model therefore tries, cheapest first, with
-//   Lemke's own retries only in the last attempt:
+//   are more contact rows than degrees of freedom), and from a cold start Lemke then can
+//   end on a secondary ray or a singular basis by roundoff. solve_lcp_model therefore
+//   tries, cheapest first, with Lemke's own retries only in the last attempt:
 //   1. Lemke on q from the warm basis (if given and feasible), else cold;
 //   2. Lemke (warm basis, else cold) on the perturbed q + δu, δ = kLcpPerturbation·‖q‖∞,
 //      u_i ∈ [½, 1) pseudo-random per row (deterministic): distinct positive offsets break
 //      the ties of the degenerate pivots. Its basis is then tried on q ("polish"): exact
 //      wherever that basis is feasible there (always when the solution is not
 //      degenerate), so resting bodies stay exactly at rest and the next step is
-//      warm-started. Else the perturbed solution is kept: each contact may approach or
-//      slip at up to δ (m/s) unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0,
-//      friction still opposes slip). Up to kLcpPerturbationSeeds patterns, δ ten times
-//      larger for each next one (where a pattern fails, q has features of about δ, e.g.
-//      gaps φ/Δt ~ δ that the previous perturbed step left);
+//      warm-started. Else the perturbed solution is kept (status solved_inaccurate): each
+//      contact may approach or slip at up to δ (m/s) unresisted, and no energy is added
+//      (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes slip). Up to kLcpPerturbationSeeds
+//      patterns, δ ten times larger for each next one;
 //   3. Lemke with the caller's settings (covering-vector and M + εI retries; costly on
-//      large islands: minutes for 3,200 unknowns).
+//      large islands).
 //   ContactSolution::warm_started is set only when step 1 solved it (zero pivots).
 //   ContactSolution::residual is always that of the unperturbed LCP (≤ δ after step 2).
 //
-// convex (two phases, DESIGN §1.4), by the interior-point QP:
+// convex (two phases), by the interior-point QP:
 //   1. min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ (Jn v* + max(φ,0)/Δt)             (no friction)
 //   2. κ = eᵀλn;  min ½ λᵀ W λ + λᵀ J v* + ρ λnᵀ diag(exp(φ)) diag(Wnn) λn
 //      s.t. Jn v⁺ + max(φ,0)/Δt ≥ 0, λn ≥ 0, eᵀλn ≤ κ, |λt| ≤ μ λn.
 //   Phase 1's solution with λt = 0 is feasible for phase 2, so phase 2 always has one.
-//   DESIGN writes the last term as λnᵀ diag(exp(φ)) λn, which is not unit-consistent
-//   (λ in N·s, W in 1/kg); it is scaled here by diag(Wnn) with a dimensionless weight ρ
-//   (default 1e-3, SimulatorSettings::convex_rho). Measured: with the unscaled term (ρ = 1
-//   in 1/kg) a pile of 20 kg polygons gained up to 0.9% of its energy in one step; with
-//   the scaled term it dissipates. The term makes λn unique with redundant contacts but
-//   also makes contact slightly soft: a block that Coulomb friction holds creeps (measured
-//   in tests/dynamics_incline_test.cpp); ρ → 0 recovers maximum dissipation.
+//   The softening term is scaled by diag(Wnn) with a dimensionless weight ρ (default 1e-3,
+//   SimulatorSettings::convex_rho) so that it is unit-consistent (λ in N·s, W in 1/kg);
+//   unscaled, a pile of heavy polygons can gain energy. The term makes λn unique with
+//   redundant contacts but also makes contact slightly soft (a block that Coulomb friction
+//   holds creeps, tests/dynamics_incline_test.cpp); ρ → 0 recovers maximum dissipation.
 //   κ is loosened by 1e-6 relative so that the interior point has an interior, and where
 //   phase 2 still fails by 1e-4, then 1e-2 (resting pyramids; convex_model.cpp); where no
 //   contact approaches (b ≥ 0) the answer λ = 0 is returned directly.
@@ -59,17 +55,40 @@
 
 namespace lcprelax {
 
-/// Relative size δ/‖q‖∞ of the perturbation of the lcp model's second attempt (above):
-/// 1e-8 still left the 20-base pyramid of tests/dynamics_rest_test.cpp on a ray, 1e-7
-/// solved every pyramid measured (bases 10 and 20, with and without side contacts).
+/// Relative size δ/‖q‖∞ of the perturbation of the lcp model's second attempt (above); the
+/// smallest power of ten that solves the resting pyramids of tests/dynamics_rest_test.cpp.
 constexpr double kLcpPerturbation = 1e-7;
 /// Perturbation patterns tried before Lemke's own (costly) retries; the last has
 /// δ = 100·kLcpPerturbation·‖q‖∞.
 constexpr int kLcpPerturbationSeeds = 3;
 
+/// The outcome of one island's contact solve.
+enum class ContactStatus {
+  unsolved,           ///< not solved yet
+  solved,             ///< the model's solve reached its tolerance (LCP residual, or QP eps)
+  solved_inaccurate,  ///< usable, but outside the tolerance: the lcp model's solution on a
+                      ///< perturbed q (residual ≤ δ, above), or a QP phase solved_inaccurate
+  failed              ///< no solution of the model; the fields hold a fallback (see below)
+};
+
+constexpr const char* to_string(ContactStatus s) {
+  switch (s) {
+    case ContactStatus::unsolved: return "unsolved";
+    case ContactStatus::solved: return "solved";
+    case ContactStatus::solved_inaccurate: return "solved_inaccurate";
+    case ContactStatus::failed: return "failed";
+  }
+  return "unknown";
+}
+
+/// Whether the impulses and v⁺ are the model's solution (solved or solved_inaccurate).
+constexpr bool has_solution(ContactStatus s) {
+  return s == ContactStatus::solved || s == ContactStatus::solved_inaccurate;
+}
+
 struct ContactSolution {
-  bool ok = false;          ///< the solve reached its status solved
-  std::string message;      ///< status text of the failing solve when !ok
+  ContactStatus status = ContactStatus::unsolved;
+  std::string message;      ///< why, when the status is not solved
   Vector lambda_n;          ///< normal impulse per contact
   Vector lambda_t;          ///< tangential impulse per friction row (along t)
   Vector v_next;            ///< v⁺ per island dof
@@ -91,7 +110,7 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm = {});
 
-/// How the convex model's QPs are posed (lib/src/models/convex_model_qp.hpp): `dual` in
+/// How the convex model's QPs are posed (models/src/convex_model_qp.hpp): `dual` in
 /// the impulses λ with the Delassus matrix W = J M⁻¹ Jᵀ; `lifted` in (Δv, λ) with the
 /// equality M Δv = Jᵀ λ, whose KKT matrix holds only M and the Jacobians (less fill on
 /// large islands); `automatic`: lifted from kLiftedMinContacts contacts on. Both give the
@@ -102,9 +121,9 @@ enum class ConvexFormulation { automatic, dual, lifted };
 /// crossover between 14 (dual faster) and 30 contacts (lifted faster), convex_model_qp.hpp.
 constexpr Index kLiftedMinContacts = 24;
 
-/// Solves the convex two-phase model. When phase 1 succeeds but phase 2 fails (measured:
-/// a plank 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
-/// the result has ok = false and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
+/// Solves the convex two-phase model. When phase 1 succeeds but phase 2 fails (e.g. a plank
+/// 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
+/// the result has status failed and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
                                    double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic);
 

@@ -6,7 +6,7 @@
 // matrix is diag(m, m, I) per body (vertices are centred on the centre of mass), so
 // M⁻¹ is the vector minv.
 //
-// Rows (DESIGN §1.4): for contact c with point p, unit normal n (from b to a) and tangent
+// Rows: for contact c with point p, unit normal n (from b to a) and tangent
 // t = (−n_y, n_x), the relative velocity of a with respect to b at p is
 //     u = v_a + ω_a × (p − x_a) − v_b − ω_b × (p − x_b),   ω × r = ω (−r_y, r_x),
 // so the normal row on body a is (n_x, n_y, r_a × n) with r × n = r_x n_y − r_y n_x, and

@@ -1,5 +1,5 @@
 #pragma once
-// Semi-implicit, velocity-level time stepping of a 2-D scene (DESIGN §1.4).
+// Semi-implicit, velocity-level time stepping of a 2-D world (docs/formulations.md).
 //
 // One step of length Δt:
 //   1. contacts with gap φ ≤ margin + 2·Δt·max(|v| + |ω| r) over the bodies and over their
@@ -68,7 +68,9 @@ struct SimulatorSettings {
 
 struct StepStats {
   int contacts = 0;
-  int islands = 0;
+  int islands = 0;             ///< = solved_islands + inaccurate_islands + failed_islands
+  int solved_islands = 0;      ///< ContactStatus::solved
+  int inaccurate_islands = 0;  ///< ContactStatus::solved_inaccurate (usable, outside tolerance)
   int largest_island_unknowns = 0;
   long work = 0;               ///< Lemke pivots + interior-point iterations
   int warm_started_islands = 0;
@@ -80,6 +82,7 @@ struct StepStats {
   /// with neither, v⁺ = v* (no contact impulse). A fallback still counts as a failure.
   int failed_islands = 0;
   std::string first_failure;   ///< message of the first failed solve
+  std::string first_inaccurate;  ///< message of the first inaccurate solve
   int projected_islands = 0;     ///< islands whose positions the post-stabilization moved
   int failed_projections = 0;    ///< islands whose projection failed (positions left as they were)
   double collision_seconds = 0.0, solve_seconds = 0.0;

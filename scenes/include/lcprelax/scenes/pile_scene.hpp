@@ -49,7 +49,7 @@ void check_pile_options(const PileOptions& options);
 /// A pile of `options.bodies` random convex polygons above the ground, between two walls
 /// (layout above). Each polygon has n ∈ [min_vertices, max_vertices] vertices on its
 /// circumcircle at angles φ₀ + 2π(k + ξ_k)/n, ξ_k ∈ [−0.3, 0.3] (strictly convex,
-/// validate_polygon), a random angle θ ∈ [0, 2π), velocity components in ±0.5·max_size/s
+/// polygon_validation_error), a random angle θ ∈ [0, 2π), velocity components in ±0.5·max_size/s
 /// and angular velocity in ±1 rad/s. The same options give the same scene, bit for bit
 /// (on one platform; see above).
 /// Throws InputError for invalid options (check_pile_options).

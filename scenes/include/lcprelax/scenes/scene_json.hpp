@@ -1,5 +1,5 @@
 #pragma once
-// Scene files: JSON (DESIGN §3). SI units (m, kg, s, rad); angles counter-clockwise.
+// Scene files: JSON (docs/formats.md). SI units (m, kg, s, rad); angles counter-clockwise.
 //
 // Schema (every key optional unless marked "required"; unknown keys are errors):
 //   {
@@ -15,7 +15,7 @@
 //     },                                              // each unordered pair at most once
 //     "bodies": [{
 //       "vertices": [[x, y], ...],          // required; 3..12, counter-clockwise, strictly
-//                                           // convex (validate_polygon); m, relative to
+//                                           // convex (polygon_validation_error); m, relative to
 //                                           // "position" in the body frame (rotated by
 //                                           // "angle")
 //       "density": 1000,                    // kg/m², > 0 — OR both of:

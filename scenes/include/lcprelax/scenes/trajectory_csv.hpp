@@ -1,5 +1,5 @@
 #pragma once
-// Trajectories as CSV (DESIGN §3): a header line, then one row per body per step.
+// Trajectories as CSV (docs/formats.md): a header line, then one row per body per step.
 //
 //   step,time,body,x,y,theta,vx,vy,omega
 //   0,0,0,0,0.5,0,0,0,0

@@ -1,7 +1,7 @@
 #pragma once
 // The 2-D rigid-body world shared by collision, time stepping, scenes and learning.
 //
-// Conventions (SI units; DESIGN §3):
+// Conventions (SI units; docs/conventions.md):
 // - A body's configuration is (x, y, θ): the world position of its centre of mass (m) and
 //   its rotation angle (rad, counter-clockwise). Its velocity is (vx, vy, ω) (m/s, rad/s).
 // - Polygon vertices are given in the body frame, counter-clockwise, with the centroid at
