@@ -13,9 +13,8 @@
 //   its graph is the body–contact incidence graph, and a fill-reducing order eliminates
 //   contacts before bodies. This is the classical primal–dual form of the contact problem
 //   (e.g. Anitescu & Potra 1997; Stewart & Trinkle 1996 keep v and λ as unknowns alike).
-//   Measured with a settled random pile (the island's cpu time of solve_convex_model,
-//   dual / lifted): 14 contacts 0.87, 30 contacts 1.26, 64 contacts 1.61, 179 contacts
-//   1.99, 327 contacts 1.78; kLiftedMinContacts is set between the first two.
+//   Lifted is faster from a few tens of contacts on (the measured crossover that sets
+//   kLiftedMinContacts is in bench/README.md).
 //
 // Both have the same optimum in λn, λt and v⁺ (v⁺ is unique; λ is unique where the ρ term
 // and W make it so): the equality only names J M⁻¹ Jᵀ λ. Phase 2's row `nc` is eᵀλn ≤ κ

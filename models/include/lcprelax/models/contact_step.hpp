@@ -117,8 +117,8 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
 /// same v⁺ to the QP tolerance.
 enum class ConvexFormulation { automatic, dual, lifted };
 
-/// Smallest island (contacts) that ConvexFormulation::automatic solves lifted; measured
-/// crossover between 14 (dual faster) and 30 contacts (lifted faster), convex_model_qp.hpp.
+/// Smallest island (contacts) that ConvexFormulation::automatic solves lifted: the measured
+/// crossover between the two formulations (bench/README.md).
 constexpr Index kLiftedMinContacts = 24;
 
 /// Solves the convex two-phase model. When phase 1 succeeds but phase 2 fails (e.g. a plank
