@@ -2,6 +2,8 @@
 // K = [H Bᵀ; B −D] — residuals, inertia, numeric refactorization on a fixed pattern,
 // failure statuses (pattern mismatch, zero pivot, NaN), dynamic regularization,
 // clone_analysis across threads, and the lifecycle errors.
+#include "factorization_test_support.hpp"
+
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
 
 #include <gtest/gtest.h>
@@ -20,6 +22,12 @@ using lcprelax::Triplet;
 using lcprelax::Vector;
 using lcprelax::sparse::CholmodLdlt;
 using lcprelax::sparse::FactorStatus;
+using lcprelax::test::random_rhs;
+
+// Backward error of K X = B (K full).
+double residual(const SparseMatrix& K, const DenseMatrix& X, const DenseMatrix& B) {
+  return lcprelax::test::relative_residual(DenseMatrix(K), X, B);
+}
 
 // Full symmetric K = [H Bᵀ; B −D] with H SPD (n×n), D diagonal positive (m×m), B m×n.
 // `scale` multiplies every value so that two seeds/scales give one pattern, new values.
@@ -57,21 +65,7 @@ SparseMatrix quasi_definite(int n, int m, unsigned seed, double scale = 1.0) {
 
 SparseMatrix upper(const SparseMatrix& K) { return K.triangularView<Eigen::Upper>(); }
 
-DenseMatrix random_rhs(int rows, int cols, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> val(-1.0, 1.0);
-  DenseMatrix B(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) B(i, j) = val(gen);
-  return B;
-}
 
-// ‖K x − b‖∞ / (‖K‖∞ ‖x‖∞ + ‖b‖∞), the backward error of a solve.
-double relative_residual(const SparseMatrix& K, const DenseMatrix& X, const DenseMatrix& B) {
-  const DenseMatrix R = K * X - B;
-  const double k_norm = DenseMatrix(K).cwiseAbs().rowwise().sum().maxCoeff();
-  return R.cwiseAbs().maxCoeff() / (k_norm * X.cwiseAbs().maxCoeff() + B.cwiseAbs().maxCoeff());
-}
 
 TEST(CholmodLdlt, SolvesRandomQuasiDefiniteSystems) {
   for (unsigned seed : {1u, 2u, 3u}) {
@@ -82,7 +76,7 @@ TEST(CholmodLdlt, SolvesRandomQuasiDefiniteSystems) {
     const DenseMatrix b = random_rhs(65, 1, seed + 100);
     DenseMatrix x = b;
     ASSERT_TRUE(f.solve(x).ok());
-    EXPECT_LT(relative_residual(K, x, b), 1e-14) << "seed " << seed;
+    EXPECT_LT(residual(K, x, b), 1e-14) << "seed " << seed;
     EXPECT_EQ(f.rows(), 65);
   }
 }
@@ -97,7 +91,7 @@ TEST(CholmodLdlt, IgnoresTheLowerTriangleAndAcceptsUncompressedInput) {
   const DenseMatrix b = random_rhs(40, 1, 8);
   DenseMatrix x = b;
   ASSERT_TRUE(f.solve(x).ok());
-  EXPECT_LT(relative_residual(K, x, b), 1e-14);
+  EXPECT_LT(residual(K, x, b), 1e-14);
 }
 
 TEST(CholmodLdlt, SolvesManyRightHandSidesInPlace) {
@@ -108,7 +102,7 @@ TEST(CholmodLdlt, SolvesManyRightHandSidesInPlace) {
   const DenseMatrix B = random_rhs(70, 7, 12);
   DenseMatrix X = B;
   ASSERT_TRUE(f.solve(X).ok());
-  EXPECT_LT(relative_residual(K, X, B), 1e-14);
+  EXPECT_LT(residual(K, X, B), 1e-14);
   // A block of a taller matrix: leading dimension 75 ≠ 70 rows.
   DenseMatrix tall = DenseMatrix::Constant(75, 7, 42.0);
   tall.topRows(70) = B;
@@ -149,7 +143,7 @@ TEST(CholmodLdlt, RefactorizesNewValuesWithoutNewAnalysis) {
   const DenseMatrix b = random_rhs(42, 2, 33);
   DenseMatrix x = b;
   ASSERT_TRUE(f.solve(x).ok());
-  EXPECT_LT(relative_residual(K2, x, b), 1e-14);
+  EXPECT_LT(residual(K2, x, b), 1e-14);
 }
 
 TEST(CholmodLdlt, RejectsAnotherPattern) {

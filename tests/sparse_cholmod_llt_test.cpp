@@ -1,5 +1,7 @@
 // CholmodLlt: supernodal LLᵀ of seeded random SPD matrices (residuals, many right-hand
 // sides, refactorization, clone) and the not_positive_definite status with its column.
+#include "factorization_test_support.hpp"
+
 #include <lcprelax/sparse/cholmod_llt.hpp>
 
 #include <gtest/gtest.h>
@@ -15,6 +17,12 @@ using lcprelax::SparseMatrix;
 using lcprelax::Triplet;
 using lcprelax::sparse::CholmodLlt;
 using lcprelax::sparse::FactorStatus;
+using lcprelax::test::random_rhs;
+
+// Backward error of A X = B for A given by its upper triangle.
+double residual(const SparseMatrix& upper, const DenseMatrix& X, const DenseMatrix& B) {
+  return lcprelax::test::relative_residual(lcprelax::test::symmetric_from_upper(upper), X, B);
+}
 
 // A 2-D Laplacian-like SPD matrix on a k×k grid with random positive weights: dense
 // enough after fill-in to give real supernodes. Upper triangle only.
@@ -42,21 +50,7 @@ SparseMatrix grid_spd(int k, unsigned seed, double shift = 0.1) {
   return A;
 }
 
-DenseMatrix random_rhs(int rows, int cols, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> val(-1.0, 1.0);
-  DenseMatrix B(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) B(i, j) = val(gen);
-  return B;
-}
 
-double relative_residual(const SparseMatrix& upper, const DenseMatrix& X, const DenseMatrix& B) {
-  const DenseMatrix A = DenseMatrix(upper).selfadjointView<Eigen::Upper>();
-  const double a_norm = A.cwiseAbs().rowwise().sum().maxCoeff();
-  return (A * X - B).cwiseAbs().maxCoeff() /
-         (a_norm * X.cwiseAbs().maxCoeff() + B.cwiseAbs().maxCoeff());
-}
 
 TEST(CholmodLlt, SolvesSpdSystemsWithManyRightHandSides) {
   const SparseMatrix A = grid_spd(15, 1);
@@ -70,11 +64,11 @@ TEST(CholmodLlt, SolvesSpdSystemsWithManyRightHandSides) {
   const DenseMatrix b = random_rhs(225, 1, 2);
   DenseMatrix x = b;
   ASSERT_TRUE(f.solve(x).ok());
-  EXPECT_LT(relative_residual(A, x, b), 1e-14);
+  EXPECT_LT(residual(A, x, b), 1e-14);
   const DenseMatrix B = random_rhs(225, 6, 3);
   DenseMatrix X = B;
   ASSERT_TRUE(f.solve(X).ok());
-  EXPECT_LT(relative_residual(A, X, B), 1e-14);
+  EXPECT_LT(residual(A, X, B), 1e-14);
   DenseMatrix wide = B;  // the first column alone agrees with the batch
   ASSERT_TRUE(f.solve(wide.leftCols(1)).ok());
   EXPECT_LT((wide.col(0) - X.col(0)).cwiseAbs().maxCoeff(), 1e-13);
@@ -95,7 +89,7 @@ TEST(CholmodLlt, RefactorizesAndClones) {
   DenseMatrix x = b, y = b;
   ASSERT_TRUE(f.solve(x).ok());
   ASSERT_TRUE(g.solve(y).ok());
-  EXPECT_LT(relative_residual(A2, x, b), 1e-14);
+  EXPECT_LT(residual(A2, x, b), 1e-14);
   EXPECT_EQ((x - y).cwiseAbs().maxCoeff(), 0.0);
   SparseMatrix other = A1;
   other.coeffRef(0, 99) = 0.01;
@@ -143,7 +137,7 @@ TEST(CholmodLlt, RejectsNanAndWorksAfterMove) {
   DenseMatrix x = random_rhs(25, 1, 9);
   const DenseMatrix b = x;
   ASSERT_TRUE(g.solve(x).ok());
-  EXPECT_LT(relative_residual(A, x, b), 1e-14);
+  EXPECT_LT(residual(A, x, b), 1e-14);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // KluLu: sparse LU of seeded random unsymmetric matrices — solve and transposed solve
 // residuals, refactorization with the kept pivot order, singular matrices, rcond.
+#include "factorization_test_support.hpp"
+
 #include <lcprelax/sparse/klu_lu.hpp>
 
 #include <gtest/gtest.h>
@@ -15,6 +17,8 @@ using lcprelax::SparseMatrix;
 using lcprelax::Triplet;
 using lcprelax::sparse::FactorStatus;
 using lcprelax::sparse::KluLu;
+using lcprelax::test::random_rhs;
+using lcprelax::test::relative_residual;
 
 // Unsymmetric, with a fixed pattern for a given n (values depend on seed and scale).
 SparseMatrix unsymmetric(int n, unsigned seed, double scale = 1.0) {
@@ -34,20 +38,7 @@ SparseMatrix unsymmetric(int n, unsigned seed, double scale = 1.0) {
   return A;
 }
 
-DenseMatrix random_rhs(int rows, int cols, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> val(-1.0, 1.0);
-  DenseMatrix B(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) B(i, j) = val(gen);
-  return B;
-}
 
-double relative_residual(const DenseMatrix& A, const DenseMatrix& X, const DenseMatrix& B) {
-  const double a_norm = A.cwiseAbs().rowwise().sum().maxCoeff();
-  return (A * X - B).cwiseAbs().maxCoeff() /
-         (a_norm * X.cwiseAbs().maxCoeff() + B.cwiseAbs().maxCoeff());
-}
 
 TEST(KluLu, SolvesAndTransposeSolvesUnsymmetricSystems) {
   for (unsigned seed : {1u, 2u, 3u}) {

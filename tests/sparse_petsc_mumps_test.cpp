@@ -11,6 +11,8 @@
 // the static-order backend's refactorize_pivoted() gives the same inertia and residual
 // ≤ 1e-12, and the next factorize() is in the static order again.
 // Without PETSc: analyze() returns invalid_input naming LCPRELAX_WITH_PETSC.
+#include "factorization_test_support.hpp"
+
 #include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
 #include <lcprelax/sparse/petsc_mumps_ldlt.hpp>
@@ -60,16 +62,9 @@ SparseMatrix kkt_upper(int n, int m, unsigned seed, double scale = 1.0) {
   return U;
 }
 
-DenseMatrix rhs(int rows, int cols) {
-  std::mt19937 gen(7);
-  std::uniform_real_distribution<double> val(-1.0, 1.0);
-  DenseMatrix B(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) B(i, j) = val(gen);
-  return B;
-}
 
-double relative_residual(const SparseMatrix& U, const DenseMatrix& X, const DenseMatrix& B) {
+// ‖K X − B‖∞ / ‖B‖∞ (stricter than the backward error of factorization_test_support.hpp).
+double residual_over_rhs(const SparseMatrix& U, const DenseMatrix& X, const DenseMatrix& B) {
   const SparseMatrix K = U.selfadjointView<Eigen::Upper>();
   return (K * X - B).lpNorm<Eigen::Infinity>() / B.lpNorm<Eigen::Infinity>();
 }
@@ -78,7 +73,7 @@ double relative_residual(const SparseMatrix& U, const DenseMatrix& X, const Dens
 
 TEST(PetscMumpsLdlt, SolvesQuasiDefiniteKktLikeCholmod) {
   const SparseMatrix U = kkt_upper(60, 25, 1);
-  const DenseMatrix B = rhs(85, 3);
+  const DenseMatrix B = lcprelax::test::random_rhs(85, 3, 7);
   PetscMumpsLdlt mumps;
   ASSERT_TRUE(mumps.analyze(U).ok());
   EXPECT_GT(mumps.factor_nnz(), 0);
@@ -86,7 +81,7 @@ TEST(PetscMumpsLdlt, SolvesQuasiDefiniteKktLikeCholmod) {
   ASSERT_TRUE(f.ok()) << f.message;
   DenseMatrix X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
-  EXPECT_LE(relative_residual(U, X, B), 1e-12);
+  EXPECT_LE(residual_over_rhs(U, X, B), 1e-12);
 
   CholmodLdlt cholmod;
   ASSERT_TRUE(cholmod.analyze(U).ok());
@@ -107,15 +102,15 @@ TEST(PetscMumpsLdlt, RefactorizesNewValuesOnTheAnalysedPattern) {
   ASSERT_TRUE(mumps.factorize(U1).ok());
   ASSERT_TRUE(mumps.factorize(U2).ok());
   EXPECT_EQ(mumps.numeric_factorizations(), 2);
-  const DenseMatrix B = rhs(55, 2);
+  const DenseMatrix B = lcprelax::test::random_rhs(55, 2, 7);
   DenseMatrix X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
-  EXPECT_LE(relative_residual(U2, X, B), 1e-12);
+  EXPECT_LE(residual_over_rhs(U2, X, B), 1e-12);
 }
 
 TEST(PetscMumpsLdlt, FailuresAreStatuses) {
   PetscMumpsLdlt mumps;
-  DenseMatrix X = rhs(55, 1);
+  DenseMatrix X = lcprelax::test::random_rhs(55, 1, 7);
   EXPECT_EQ(mumps.solve(X).status, FactorStatus::not_analyzed);
   EXPECT_EQ(mumps.factorize(kkt_upper(40, 15, 1)).status, FactorStatus::not_analyzed);
   ASSERT_TRUE(mumps.analyze(kkt_upper(40, 15, 1)).ok());
@@ -150,13 +145,13 @@ TEST(PetscMumpsLdlt, StaticPivotOrderReportsReplacedPivots) {
       if (singular.innerIndexPtr()[k] == 5) singular.valuePtr()[k] = 0.0;
   const auto r = mumps.factorize(singular);
   EXPECT_EQ(r.status, FactorStatus::zero_pivot) << r.message;
-  DenseMatrix X = rhs(55, 1);
+  DenseMatrix X = lcprelax::test::random_rhs(55, 1, 7);
   EXPECT_EQ(mumps.solve(X).status, FactorStatus::not_analyzed);  // no factor to use
   ASSERT_TRUE(mumps.factorize(U).ok());                           // and it recovers
-  const DenseMatrix B = rhs(55, 1);
+  const DenseMatrix B = lcprelax::test::random_rhs(55, 1, 7);
   X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
-  EXPECT_LE(relative_residual(U, X, B), 1e-12);
+  EXPECT_LE(residual_over_rhs(U, X, B), 1e-12);
 }
 
 SparseMatrix with_zero_row_and_column(SparseMatrix U, int row) {
@@ -181,10 +176,10 @@ TEST(PetscMumpsLdlt, FactorizesAgainAfterAFailedNumericPhase) {
   EXPECT_NE(failed.message.find("INFOG(1) = -10"), std::string::npos) << failed.message;
   const auto r = mumps.factorize(U);
   ASSERT_TRUE(r.ok()) << r.message;
-  const DenseMatrix B = rhs(55, 2);
+  const DenseMatrix B = lcprelax::test::random_rhs(55, 2, 7);
   DenseMatrix X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
-  EXPECT_LE(relative_residual(U, X, B), 1e-12);
+  EXPECT_LE(residual_over_rhs(U, X, B), 1e-12);
   EXPECT_EQ(mumps.inertia().negative, 15);
 }
 
@@ -205,10 +200,10 @@ TEST(PetscMumpsLdlt, PivotedRefactorizationOfTheStaticOrderBackend) {
   EXPECT_EQ(mumps.numeric_factorizations(), 2);
   EXPECT_EQ(mumps.inertia().positive, 40);
   EXPECT_EQ(mumps.inertia().negative, 15);
-  const DenseMatrix B = rhs(55, 2);
+  const DenseMatrix B = lcprelax::test::random_rhs(55, 2, 7);
   DenseMatrix X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
-  EXPECT_LE(relative_residual(U1, X, B), 1e-12);
+  EXPECT_LE(residual_over_rhs(U1, X, B), 1e-12);
 
   // A singular matrix: replaced pivot in the static order, MUMPS' failure with pivoting;
   // both are statuses, and the backend factorizes the next matrix in the static order.
@@ -219,7 +214,7 @@ TEST(PetscMumpsLdlt, PivotedRefactorizationOfTheStaticOrderBackend) {
   ASSERT_TRUE(mumps.factorize(U2).ok());
   X = B;
   ASSERT_TRUE(mumps.solve(X).ok());
-  EXPECT_LE(relative_residual(U2, X, B), 1e-12);
+  EXPECT_LE(residual_over_rhs(U2, X, B), 1e-12);
 
   PetscMumpsLdlt pivoting;  // already pivots: nothing to redo differently
   EXPECT_FALSE(pivoting.can_refactorize_pivoted());

@@ -1,5 +1,5 @@
 // QPS reader (free-format MPS with QUADOBJ / QMATRIX / QSECTION), conventions in
-// <lcprelax/io/qps_reader.hpp> and DESIGN §3. One pass over the lines collects names,
+// <lcprelax/io/qps_reader.hpp>. One pass over the lines collects names,
 // triplets and bound data with duplicate checks; row bounds (RHS + RANGES), variable-bound
 // crossings and the symmetry of a full QMATRIX are resolved after ENDATA, with the line
 // number of the offending entry kept for the message. Integer data (MARKER blocks, BV/LI/
@@ -232,7 +232,7 @@ class QpsParser {
         if (ref.kind == RowKind::objective) {
           if (objective_rhs_set_) lex_.fail("duplicate RHS entry for objective row '" + f[k] + "'");
           objective_rhs_set_ = true;
-          r_ = -v;  // DESIGN §3: the objective row's RHS is −r
+          r_ = -v;  // the objective row's RHS is −r
         }
         continue;
       }

@@ -24,10 +24,25 @@ struct LemkeSolver::Impl {
   double mnorm = 0;  // ‖M‖∞
   long max_pivots = 0;
   bool is_setup = false;
+  LemkeMethod method = LemkeMethod::dense;  // the basis in use (settled at setup)
   std::vector<bool> warm;
   LcpResult result;
   std::vector<Index> basic;  // variable per row: [0,n) w, [n,2n) z, 2n z0
   std::unique_ptr<detail::LemkeBasis> basis;
+  void (*refactor_hook)(bool) = nullptr;
+
+  // Which basis the factorization holds: factored_basic, valid while factor_current
+  // (cleared by a column replacement and by any change of M or d).
+  std::vector<Index> factored_basic;
+  bool factor_current = false;
+
+  // Work arrays, sized at setup (the pivot loop allocates nothing).
+  Vector xB, a, ratio_col, refine;  // x_B; B⁻¹(entering column); ratio denominators; residual
+  Vector z_spare, w_spare;           // storage of result.z / result.w between solves
+  std::vector<Index> rows, keep;     // candidate rows of the ratio test
+  std::vector<Index> slot;           // row → column of inv_rows
+  DenseMatrix inv_rows;              // rows of B⁻¹ for tie-breaks (n × capacity; grows only
+                                     // when more rows tie than ever before on this solver)
 
   void set_q(const Vector& q_in) {
     q_user = q_in;
@@ -40,56 +55,108 @@ struct LemkeSolver::Impl {
   Index z0() const { return 2 * n; }
   static Index complement(Index var, Index n) { return var < n ? var + n : var - n; }
 
-  void make_basis() {
+  // The basis object and the work arrays for size n (called by setup()).
+  void allocate() {
     const bool dense = settings.method == LemkeMethod::dense ||
                        (settings.method == LemkeMethod::automatic && n <= settings.dense_max_n);
-    result.info.method = dense ? LemkeMethod::dense : LemkeMethod::sparse;
+    method = dense ? LemkeMethod::dense : LemkeMethod::sparse;
     const detail::LemkeColumns cols{&M, &d, n};
     basis = dense ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
                   : detail::make_sparse_lemke_basis(cols, settings.refactor_interval);
+    factor_current = false;
+    basic.assign(static_cast<std::size_t>(n), 0);
+    factored_basic.assign(static_cast<std::size_t>(n), -1);
+    xB.resize(n);
+    a.resize(n);
+    ratio_col.resize(n);
+    refine.resize(n);
+    z_spare.resize(n);
+    w_spare.resize(n);
+    result.z.resize(0);
+    result.w.resize(0);
+    rows.reserve(static_cast<std::size_t>(n));
+    keep.reserve(static_cast<std::size_t>(n));
+    slot.assign(static_cast<std::size_t>(n), 0);
+    inv_rows.resize(n, dense ? n : std::min<Index>(n, detail::kMaxSchurUpdates));
+    warm.reserve(static_cast<std::size_t>(n));
+    result.z_basic.reserve(static_cast<std::size_t>(n));
   }
 
-  // Factorizes the current basis and sets x_B = B⁻¹q with up to two steps of iterative
-  // refinement (r = q − B x_B; KLU's threshold pivoting and ill-conditioned bases of
-  // resting-contact problems with ‖q‖ ~ 1e-19 need them); false if B is singular.
-  bool refactor(Vector& xB) {
-    ++result.info.refactorizations;
-    if (!basis->refactor(basic)) return false;
-    xB = q;
-    basis->solve(xB);
-    if (!xB.allFinite()) return false;
+  // Result fields back to "unsolved", keeping the storage of z, w, z_basic and message
+  // (z and w become empty: their storage is parked in z_spare / w_spare).
+  void reset_result() {
+    if (z_spare.size() == 0) result.z.swap(z_spare);
+    if (w_spare.size() == 0) result.w.swap(w_spare);
+    result.z.resize(0);
+    result.w.resize(0);
+    result.z_basic.clear();
+    result.info.status = LcpStatus::unsolved;
+    result.info.message.clear();
+    result.info.pivots = 0;
+    result.info.complementarity = std::numeric_limits<double>::quiet_NaN();
+    result.info.seconds = 0.0;
+    result.info.warm_started = false;
+    result.info.method = method;
+    result.info.refactorizations = 0;
+    result.info.regularization = 0.0;
+  }
+
+  // v of size n, taking the parked storage when v has none.
+  void take(Vector& v, Vector& spare) const {
+    if (v.size() != n && spare.size() == n) v.swap(spare);
+    v.resize(n);
+  }
+
+  // Factorizes the current basis (unless the factorization already holds it) and sets
+  // x_B = B⁻¹q with up to two steps of iterative refinement (r = q − B x_B; KLU's
+  // threshold pivoting and ill-conditioned bases of resting-contact problems with
+  // ‖q‖ ~ 1e-19 need them); false if B is singular.
+  bool refactor(Vector& x) {
+    if (!factor_current || basic != factored_basic) {
+      ++result.info.refactorizations;
+      factor_current = false;
+      if (refactor_hook) refactor_hook(true);
+      const bool ok = basis->refactor(basic);
+      if (refactor_hook) refactor_hook(false);
+      if (!ok) return false;
+      factored_basic = basic;
+      factor_current = true;
+    }
+    x = q;
+    basis->solve(x);
+    if (!x.allFinite()) return false;
     const detail::LemkeColumns cols{&M, &d, n};
     for (int step = 0; step < 2; ++step) {
-      Vector r = q;
-      for (Index k = 0; k < n; ++k) cols.add_to(basic[k], -xB(k), r);
-      if (r.lpNorm<Eigen::Infinity>() == 0.0) break;
-      basis->solve(r);
-      xB += r;
+      refine = q;
+      for (Index k = 0; k < n; ++k) cols.add_to(basic[k], -x(k), refine);
+      if (refine.lpNorm<Eigen::Infinity>() == 0.0) break;
+      basis->solve(refine);
+      x += refine;
     }
-    return xB.allFinite();
+    return x.allFinite();
   }
 
-  // Lexicographic minimum ratio over candidate rows (key: rows of [x_B, B⁻¹] / a_i).
-  // Ratios of a key column v tie with the minimum θ when v_i/a_i ≤ θ + t, with
-  // - for x_B: t = tol·(|θ| + 1/a_max), a_max = max a_i over the rows: relative to θ, plus
-  //   the roundoff of x_B seen through the largest pivot. q is normalized to ‖q‖∞ = 1,
-  //   so this is scale-free (resting contact has ‖q‖ ~ 1e-19). An absolute ratio
-  //   tolerance makes the ratios of size 1e-6 of stiff contact problems (‖M‖ ~ 1e3) ties
-  //   and breaks feasibility (granular fc2d problem);
+  // Lexicographic minimum ratio over the candidate rows `rows` (key: rows of [x_B, B⁻¹] /
+  // den_i). Ratios of a key column v tie with the minimum θ when v_i/den_i ≤ θ + t, with
+  // - for x_B: t = tol·(|θ| + 1/den_max), den_max = max den_i over the rows: relative to
+  //   θ, plus the roundoff of x_B seen through the largest pivot. q is normalized to
+  //   ‖q‖∞ = 1, so this is scale-free (resting contact has ‖q‖ ~ 1e-19). An absolute
+  //   ratio tolerance would make the ratios of size 1e-6 of stiff contact problems
+  //   (‖M‖ ~ 1e3) ties and break feasibility (granular fc2d problem);
   // - for the B⁻¹ columns: t = tol·(1 + |θ|), absolute: on lcp_tobenna (bases with
   //   pivots up to 4e6) anything tighter misses roundoff ties and cycles into a singular
   //   basis.
   // Rows of B⁻¹ are formed only for rows still tied after x_B (one transposed solve each
   // on the sparse path). Returns −1 when a ratio is not finite (NaN or ∞ in x_B or B⁻¹:
-  // the basis has lost all accuracy; measured on a 20-body pile step).
-  Index lexicographic_row(std::vector<Index> rows, const Vector& a, const Vector& xB, bool prefer_z0) const {
-    double a_max = 0.0;
-    for (Index i : rows) a_max = std::max(a_max, a(i));
+  // the basis has lost all accuracy).
+  Index lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0) {
+    double den_max = 0.0;
+    for (Index i : rows) den_max = std::max(den_max, den(i));
     bool finite = true;
     auto keep_minimal = [&](auto value, double absolute) {
       double best = std::numeric_limits<double>::infinity();
       for (Index i : rows) {
-        const double ratio = value(i) / a(i);
+        const double ratio = value(i) / den(i);
         if (!std::isfinite(ratio)) {
           finite = false;
           return;
@@ -97,27 +164,28 @@ struct LemkeSolver::Impl {
         best = std::min(best, ratio);
       }
       const double t = tol * (std::abs(best) + absolute);
-      std::vector<Index> keep;
+      keep.clear();
       for (Index i : rows)
-        if (value(i) / a(i) <= best + t) keep.push_back(i);
+        if (value(i) / den(i) <= best + t) keep.push_back(i);
       rows.swap(keep);
     };
-    keep_minimal([&](Index i) { return xB(i); }, 1.0 / a_max);
+    keep_minimal([&](Index i) { return x(i); }, 1.0 / den_max);
     if (!finite) return -1;
     if (prefer_z0)
       for (Index i : rows)
         if (basic[i] == z0()) return i;
     if (rows.size() == 1) return rows.front();
-    DenseMatrix inv_rows;  // column k: row rows[k] of B⁻¹
-    basis->inverse_rows(rows, inv_rows);
-    std::vector<Index> slot(static_cast<std::size_t>(n), -1);
-    for (std::size_t k = 0; k < rows.size(); ++k) slot[rows[k]] = static_cast<Index>(k);
+    const Index m = static_cast<Index>(rows.size());
+    if (inv_rows.cols() < m) inv_rows.resize(n, std::max<Index>(m, std::min<Index>(n, 2 * inv_rows.cols())));
+    auto inv = inv_rows.leftCols(m);  // column k: row rows[k] of B⁻¹
+    basis->inverse_rows(rows, inv);
+    for (Index k = 0; k < m; ++k) slot[rows[k]] = k;
     for (Index col = 0; col < n && rows.size() > 1 && finite; ++col)
-      keep_minimal([&](Index i) { return inv_rows(col, slot[i]); }, 1.0);
+      keep_minimal([&](Index i) { return inv(col, slot[i]); }, 1.0);
     return finite ? rows.front() : -1;
   }
 
-  void finish(LcpStatus status, const std::string& message) {
+  void finish(LcpStatus status, const char* message) {
     result.info.status = status;
     result.info.message = message;
   }
@@ -126,24 +194,37 @@ struct LemkeSolver::Impl {
   // backward()); checks the residual.
   void extract_solution() {
     // (res_tol = 0 when q = 0: then z = 0 is exact and the residual is 0.)
-    result.z = Vector::Zero(n);
-    Vector xB;
+    take(result.z, z_spare);
+    result.z.setZero();
     if (!refactor(xB)) return finish(LcpStatus::numerical_error, "final basis is singular");
-    result.z_basic.assign(n, false);
+    result.z_basic.assign(static_cast<std::size_t>(n), false);
     for (Index k = 0; k < n; ++k)
       if (basic[k] >= n && basic[k] < 2 * n) {
         result.z(basic[k] - n) = std::max(xB(k), 0.0) * q_norm;
         result.z_basic[basic[k] - n] = true;
       }
-    result.w = M * result.z + q_user;
+    take(result.w, w_spare);
+    refine.noalias() = M * result.z;
+    result.w = refine + q_user;
     result.info.complementarity = n ? result.z.cwiseMin(result.w).cwiseAbs().maxCoeff() : 0.0;
     if (result.info.complementarity <= res_tol) finish(LcpStatus::solved, "solved");
     else finish(LcpStatus::numerical_error, "complementarity residual above tolerance after refactorization");
   }
 
+  // Whether the factorization holds the basis `warm` (in its own column order).
+  bool warm_basis_is_factored() const {
+    if (!factor_current) return false;
+    for (Index k = 0; k < n; ++k) {
+      const Index v = factored_basic[k];
+      if (v >= 2 * n || (v >= n) != static_cast<bool>(warm[v < n ? v : v - n])) return false;
+    }
+    return true;
+  }
+
   bool try_warm_start() {
-    for (Index i = 0; i < n; ++i) basic[i] = warm[i] ? n + i : i;
-    Vector xB;
+    if (warm_basis_is_factored()) basic = factored_basic;
+    else
+      for (Index i = 0; i < n; ++i) basic[i] = warm[i] ? n + i : i;
     if (!refactor(xB) || xB.minCoeff() < -tol) return false;
     extract_solution();
     result.info.warm_started = has_solution(result.info.status);
@@ -151,31 +232,30 @@ struct LemkeSolver::Impl {
   }
 
   void run() {
-    basic.resize(n);
     if (n == 0) {
-      result.z = result.w = Vector(0);
+      result.z.resize(0);
+      result.w.resize(0);
       result.z_basic.clear();
       result.info.complementarity = 0.0;
       return finish(LcpStatus::solved, "empty problem");
     }
-    make_basis();
     if (!warm.empty() && try_warm_start()) return;
     for (Index i = 0; i < n; ++i) basic[i] = i;
     if (q.minCoeff() >= 0) return extract_solution();  // z = 0 solves it
 
-    Vector xB;
     if (!refactor(xB)) return finish(LcpStatus::numerical_error, "identity basis failed to factorize");
-    Vector a(n);
     // z₀ enters at the most negative q_i/d_i (lexicographically on [q, I]/d).
     Index entering = z0();
     basis->solve_column(entering, a);  // = −d
-    std::vector<Index> rows(n);
-    for (Index i = 0; i < n; ++i) rows[i] = i;
-    Index r = lexicographic_row(rows, -a, xB, false);
+    ratio_col = -a;
+    rows.clear();
+    for (Index i = 0; i < n; ++i) rows.push_back(i);
+    Index r = lexicographic_row(ratio_col, xB, false);
     for (long pivot = 0;; ++pivot) {
       if (r < 0) return finish(LcpStatus::numerical_error, "non-finite ratio in the minimum-ratio test (basis lost accuracy)");
       // Pivot on (r, entering): update the factorization and x_B.
       const bool updated = basis->replace(r, a);
+      factor_current = false;
       const double ar = a(r);
       xB(r) /= ar;
       for (Index i = 0; i < n; ++i)
@@ -192,7 +272,7 @@ struct LemkeSolver::Impl {
       for (Index i = 0; i < n; ++i)
         if (a(i) > tol) rows.push_back(i);
       if (rows.empty()) return finish(LcpStatus::ray_termination, "ray termination: no solution found by Lemke");
-      r = lexicographic_row(rows, a, xB, true);
+      r = lexicographic_row(a, xB, true);
     }
   }
 };
@@ -233,8 +313,11 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
   m.max_pivots = m.settings.max_pivots > 0 ? m.settings.max_pivots
                                            : 50L * (n + 1) + (n < 20 ? (1L << n) : 0L);
   m.max_pivots = std::min(m.max_pivots, 10'000'000L);
-  m.is_setup = true;
   m.result = LcpResult{};
+  m.allocate();
+  m.reset_result();
+  m.result.info.message = "solve() was not called";
+  m.is_setup = true;
 }
 
 void LemkeSolver::update_q(const Vector& q) {
@@ -252,7 +335,7 @@ const LcpResult& LemkeSolver::solve() {
   Impl& m = *impl_;
   if (!m.is_setup) throw std::logic_error("LemkeSolver::solve before setup");
   const auto t0 = std::chrono::steady_clock::now();
-  m.result = LcpResult{};
+  m.reset_result();
   m.run();
   m.warm.clear();
   // Retries after a failure (ray termination, singular basis, pivot limit) of degenerate
@@ -280,7 +363,8 @@ const LcpResult& LemkeSolver::solve() {
         m.M = M0 + eps * I;
         m.M.makeCompressed();
       }
-      m.result = LcpResult{};
+      m.factor_current = false;
+      m.reset_result();
       m.run();
       pivots += m.result.info.pivots;
       refactorizations += m.result.info.refactorizations;
@@ -303,6 +387,7 @@ const LcpResult& LemkeSolver::solve() {
     }
     m.M = M0;  // the basis factorization (for backward) is that of the accepted retry
     m.d = d0;
+    m.factor_current = false;
     m.result.info.pivots = pivots;
     m.result.info.refactorizations = refactorizations;
   }
@@ -311,6 +396,8 @@ const LcpResult& LemkeSolver::solve() {
 }
 
 const LcpResult& LemkeSolver::result() const { return impl_->result; }
+
+void LemkeSolver::set_refactorization_hook(void (*hook)(bool starting)) { impl_->refactor_hook = hook; }
 
 LcpGradient LemkeSolver::backward(const Vector& dl_dz) const {
   const Impl& m = *impl_;

@@ -14,13 +14,25 @@
 //   positions, C their new columns and W = B₀⁻¹C,
 //       B⁻¹ = B₀⁻¹ − (W − E_P) S⁻¹ E_Pᵀ B₀⁻¹,   S = E_Pᵀ W   (|P|×|P|, dense LU),
 //   so memory is O(nnz(L+U) + n·|P|) and no dense n×n array is formed. B₀ is refactorized
-//   when |P| reaches the refactorization interval.
+//   when |P| reaches the refactorization interval (at most kMaxSchurUpdates).
+//
+// Allocation: both bases own their work arrays, sized at construction (n and the
+// refactorization interval are fixed then). solve_column, solve, inverse_rows and replace
+// allocate nothing; refactor allocates nothing on the dense basis, and on the sparse one
+// only inside KLU's analysis and numeric factorization (klu_analyze, klu_factor allocate
+// their Symbolic and Numeric objects). solve_transposed (used by backward() only)
+// allocates a temporary.
 #include <lcprelax/sparse/types.hpp>
 
 #include <memory>
 #include <vector>
 
 namespace lcprelax::detail {
+
+/// Largest Schur complement of the sparse basis: an update is refused (forcing a
+/// refactorization) when |P| reaches min(refactor_interval, kMaxSchurUpdates). S and its
+/// LU live in fixed-capacity storage of this size, so replacing a column never allocates.
+inline constexpr int kMaxSchurUpdates = 64;
 
 /// Columns of the Lemke tableau for M (CSC) and covering vector d.
 struct LemkeColumns {
@@ -31,8 +43,10 @@ struct LemkeColumns {
   void dense(Index var, Eigen::Ref<Vector> out) const;
   /// y += alpha · (column of var).
   void add_to(Index var, double alpha, Vector& y) const;
-  /// Appends the column of variable var as triplets in column `col` of B.
-  void append(Index var, Index col, std::vector<Triplet>& out) const;
+  /// Writes the nonzeros of the column of var (explicit zeros of M skipped) to
+  /// rows[0..c) and values[0..c), in increasing row order; returns c (at most nnz of
+  /// M's column, 1 for w_i, n for z₀).
+  Index write_column(Index var, int* rows, double* values) const;
 };
 
 class LemkeBasis {
@@ -40,14 +54,14 @@ class LemkeBasis {
   virtual ~LemkeBasis() = default;
   /// Factorizes B for the variables basic[0..n); false if B is (numerically) singular.
   virtual bool refactor(const std::vector<Index>& basic) = 0;
-  /// a ← B⁻¹ (column of var); remembers what replace() needs for this column.
+  /// a ← B⁻¹ (column of var), a of size n; remembers what replace() needs for this column.
   virtual void solve_column(Index var, Vector& a) = 0;
-  /// x ← B⁻¹ x.
-  virtual void solve(Vector& x) const = 0;
+  /// x ← B⁻¹ x (x of size n).
+  virtual void solve(Vector& x) = 0;
   /// x ← B⁻ᵀ x.
   virtual void solve_transposed(Vector& x) const = 0;
-  /// Rows `rows` of B⁻¹, transposed: out.col(k) = (row rows[k] of B⁻¹)ᵀ.
-  virtual void inverse_rows(const std::vector<Index>& rows, DenseMatrix& out) const = 0;
+  /// Rows `rows` of B⁻¹, transposed: out.col(k) = (row rows[k] of B⁻¹)ᵀ; out is n × rows.size().
+  virtual void inverse_rows(const std::vector<Index>& rows, Eigen::Ref<DenseMatrix> out) = 0;
   /// Replaces the column at position r by the column last passed to solve_column, whose
   /// solved form is a (a(r) ≠ 0). Returns false when a refactorization is due or the
   /// update is numerically unsafe; the caller then calls refactor().

@@ -1,5 +1,6 @@
 // Dense Lemke basis: explicit B⁻¹ with product-form (Gauss–Jordan) column replacement and
 // a partial-pivoting LU refactorization every refactor_interval pivots (lemke_basis.hpp).
+// All work arrays are sized at construction; nothing but solve_transposed allocates.
 #include "lemke_basis.hpp"
 
 #include <Eigen/LU>
@@ -29,15 +30,26 @@ void LemkeColumns::add_to(Index var, double alpha, Vector& y) const {
   }
 }
 
-void LemkeColumns::append(Index var, Index col, std::vector<Triplet>& out) const {
+Index LemkeColumns::write_column(Index var, int* rows, double* values) const {
+  Index c = 0;
   if (var < n) {
-    out.emplace_back(static_cast<int>(var), static_cast<int>(col), 1.0);
+    rows[0] = static_cast<int>(var);
+    values[0] = 1.0;
+    c = 1;
   } else if (var < 2 * n) {
     for (SparseMatrix::InnerIterator it(*M, var - n); it; ++it)
-      if (it.value() != 0.0) out.emplace_back(static_cast<int>(it.row()), static_cast<int>(col), -it.value());
+      if (it.value() != 0.0) {
+        rows[c] = static_cast<int>(it.row());
+        values[c++] = -it.value();
+      }
   } else {
-    for (Index i = 0; i < n; ++i) out.emplace_back(static_cast<int>(i), static_cast<int>(col), -(*d)(i));
+    for (Index i = 0; i < n; ++i) {
+      rows[i] = static_cast<int>(i);
+      values[i] = -(*d)(i);
+    }
+    c = n;
   }
+  return c;
 }
 
 namespace {
@@ -45,14 +57,23 @@ namespace {
 class DenseLemkeBasis final : public LemkeBasis {
  public:
   DenseLemkeBasis(const LemkeColumns& columns, int refactor_interval)
-      : cols_(columns), interval_(refactor_interval) {}
+      : cols_(columns),
+        interval_(refactor_interval),
+        lu_(columns.n),
+        binv_(columns.n, columns.n),
+        col_(columns.n),
+        row_(columns.n) {}
 
   bool refactor(const std::vector<Index>& basic) override {
     const Index n = cols_.n;
-    DenseMatrix B(n, n);
-    for (Index k = 0; k < n; ++k) cols_.dense(basic[k], B.col(k));
-    lu_.compute(B);
-    binv_ = lu_.inverse();
+    for (Index k = 0; k < n; ++k) cols_.dense(basic[k], binv_.col(k));  // B, in B⁻¹'s storage
+    lu_.compute(binv_);
+    // B⁻¹ = U⁻¹ L⁻¹ P: P into binv_, then the two triangular solves in place.
+    const auto& perm = lu_.permutationP().indices();
+    binv_.setZero();
+    for (Index k = 0; k < n; ++k) binv_(perm(k), k) = 1.0;
+    lu_.matrixLU().template triangularView<Eigen::UnitLower>().solveInPlace(binv_);
+    lu_.matrixLU().template triangularView<Eigen::Upper>().solveInPlace(binv_);
     updates_ = 0;
     // Singular bases give non-finite inverses; ill-conditioned ones are accepted (the
     // final residual check decides).
@@ -60,31 +81,35 @@ class DenseLemkeBasis final : public LemkeBasis {
   }
 
   void solve_column(Index var, Vector& a) override {
-    a.resize(cols_.n);
-    cols_.dense(var, a);
-    a = binv_ * a;
+    cols_.dense(var, col_);
+    a.noalias() = binv_ * col_;
   }
 
-  void solve(Vector& x) const override {
-    if (updates_ == 0) x = lu_.solve(x);
-    else x = binv_ * x;
+  // Right after a refactorization the LU solve (more accurate than B⁻¹x) is used.
+  void solve(Vector& x) override {
+    col_ = x;
+    if (updates_ == 0) x = lu_.solve(col_);
+    else x.noalias() = binv_ * col_;
   }
 
   void solve_transposed(Vector& x) const override {
-    if (updates_ == 0) x = lu_.transpose().solve(x);
-    else x = binv_.transpose() * x;
+    const Vector y = x;
+    if (updates_ == 0) x = lu_.transpose().solve(y);
+    else x.noalias() = binv_.transpose() * y;
   }
 
-  void inverse_rows(const std::vector<Index>& rows, DenseMatrix& out) const override {
-    out.resize(cols_.n, static_cast<Index>(rows.size()));
+  void inverse_rows(const std::vector<Index>& rows, Eigen::Ref<DenseMatrix> out) override {
     for (std::size_t k = 0; k < rows.size(); ++k) out.col(static_cast<Index>(k)) = binv_.row(rows[k]).transpose();
   }
 
+  // Gauss–Jordan step on B⁻¹: row r /= a_r, then row i −= a_i · row r for i ≠ r (one
+  // rank-1 update with a_r set to 0).
   bool replace(Index r, const Vector& a) override {
-    const double ar = a(r);
-    binv_.row(r) /= ar;
-    for (Index i = 0; i < cols_.n; ++i)
-      if (i != r && a(i) != 0.0) binv_.row(i) -= a(i) * binv_.row(r);
+    binv_.row(r) /= a(r);
+    row_ = binv_.row(r).transpose();
+    col_ = a;
+    col_(r) = 0.0;
+    binv_.noalias() -= col_ * row_.transpose();
     ++updates_;
     return updates_ < interval_;
   }
@@ -97,6 +122,7 @@ class DenseLemkeBasis final : public LemkeBasis {
   int updates_ = 0;
   Eigen::PartialPivLU<DenseMatrix> lu_;
   DenseMatrix binv_;
+  Vector col_, row_;  // work vectors
 };
 
 }  // namespace

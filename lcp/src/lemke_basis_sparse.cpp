@@ -1,119 +1,154 @@
 // Sparse Lemke basis: KLU LU of B₀ plus a Schur-complement block update for the columns
 // replaced since (formulas in lemke_basis.hpp). An update is refused, forcing a fresh
-// KLU factorization of the current basis, when |P| reaches the refactorization interval
-// or the Schur complement's reciprocal condition estimate falls below 1e-12.
+// factorization of the current basis, when |P| reaches min(refactor_interval,
+// kMaxSchurUpdates) or the Schur complement's reciprocal condition estimate falls below
+// 1e-12. B₀ = I (the all-w basis Lemke starts from) is represented without KLU.
+//
+// Work arrays (W, S and its LU, the CSC arrays of B₀, the solved column) are sized at
+// construction; S and its LU have fixed capacity kMaxSchurUpdates², and the small blocks
+// of the Schur updates live on the stack, so only klu_analyze/klu_factor allocate.
 #include "lemke_basis.hpp"
 
 #include <lcprelax/sparse/klu_lu.hpp>
 
 #include <Eigen/LU>
 
+#include <algorithm>
+
 namespace lcprelax::detail {
 namespace {
+
+constexpr int kCap = kMaxSchurUpdates;
+constexpr Index kChunk = 8;  // right-hand sides per Schur block solve in inverse_rows
+using SchurMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kCap, kCap>;
+using SchurVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kCap, 1>;
+using SchurBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kCap, kChunk>;
 
 class SparseLemkeBasis final : public LemkeBasis {
  public:
   SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval)
-      : cols_(columns), interval_(refactor_interval), slot_(columns.n, -1) {}
+      : cols_(columns),
+        max_updates_(std::min(refactor_interval, kCap)),
+        slot_(static_cast<std::size_t>(columns.n), -1),
+        W_(columns.n, max_updates_),
+        B0_(columns.n, columns.n),
+        pending_(columns.n) {
+    pos_.reserve(static_cast<std::size_t>(max_updates_));
+    B0_.data().resize(columns.M->nonZeros() + 2 * columns.n);
+  }
 
   bool refactor(const std::vector<Index>& basic) override {
     const Index n = cols_.n;
-    std::vector<Triplet> t;
-    t.reserve(static_cast<std::size_t>(cols_.M->nonZeros() + n));
-    for (Index k = 0; k < n; ++k) cols_.append(basic[k], k, t);
-    SparseMatrix B0(n, n);
-    B0.setFromTriplets(t.begin(), t.end());
-    B0.makeCompressed();
     for (Index p : pos_) slot_[p] = -1;
     pos_.clear();
-    W_.resize(n, interval_);
-    if (!klu_.analyze(B0).ok()) return false;
-    return klu_.factorize(B0).ok();
+    identity_ = true;
+    for (Index k = 0; k < n && identity_; ++k) identity_ = basic[k] == k;
+    if (identity_) return true;
+    // B₀ in CSC, written into B0_'s arrays (capacity nnz(M) + 2n bounds any basis).
+    B0_.data().resize(cols_.M->nonZeros() + 2 * n);
+    int* outer = B0_.outerIndexPtr();
+    int* inner = B0_.innerIndexPtr();
+    double* values = B0_.valuePtr();
+    Index p = 0;
+    for (Index k = 0; k < n; ++k) {
+      outer[k] = static_cast<int>(p);
+      p += cols_.write_column(basic[k], inner + p, values + p);
+    }
+    outer[n] = static_cast<int>(p);
+    B0_.data().resize(p);
+    if (!klu_.analyze(B0_).ok()) return false;
+    return klu_.factorize(B0_).ok();
   }
 
   void solve_column(Index var, Vector& a) override {
-    pending_.resize(cols_.n);
     cols_.dense(var, pending_);
-    klu_.solve(pending_);
+    b0_solve(pending_);
     a = pending_;
     correct(a);
   }
 
-  void solve(Vector& x) const override {
-    klu_.solve(x);
+  void solve(Vector& x) override {
+    b0_solve(x);
     correct(x);
   }
 
-  void solve_transposed(Vector& x) const override { solve_transposed_block(x); }
-
-  // B⁻ᵀ E_rows: here (W − E_P)ᵀ E_rows is read off W's rows, no product needed.
-  void inverse_rows(const std::vector<Index>& rows, DenseMatrix& out) const override {
-    const Index m = static_cast<Index>(rows.size()), k = static_cast<Index>(pos_.size());
-    out = DenseMatrix::Zero(cols_.n, m);
-    for (Index c = 0; c < m; ++c) out(rows[c], c) = 1.0;
+  // x ← B⁻ᵀ x = B₀⁻ᵀ (x − E_P S⁻ᵀ (W − E_P)ᵀ x).
+  void solve_transposed(Vector& x) const override {
+    const Index k = static_cast<Index>(pos_.size());
     if (k > 0) {
-      DenseMatrix s(k, m);
-      for (Index c = 0; c < m; ++c) s.col(c) = W_.row(rows[c]).head(k).transpose();
-      for (Index j = 0; j < k; ++j) s.row(j) -= out.row(pos_[j]);
-      const DenseMatrix t = s_lu_.transpose().solve(s);
-      for (Index j = 0; j < k; ++j) out.row(pos_[j]) -= t.row(j);
+      SchurVector s = W_.leftCols(k).transpose() * x;
+      for (Index j = 0; j < k; ++j) s(j) -= x(pos_[j]);
+      const SchurVector t = s_lu_.transpose().solve(s);
+      for (Index j = 0; j < k; ++j) x(pos_[j]) -= t(j);
     }
-    klu_.solve_transposed(out);
+    if (!identity_) klu_.solve_transposed(x);
+  }
+
+  // B⁻ᵀ E_rows as above, with (W − E_P)ᵀ E_rows read off W's rows (no product); the
+  // Schur solve runs on kChunk columns at a time in stack storage.
+  void inverse_rows(const std::vector<Index>& rows, Eigen::Ref<DenseMatrix> out) override {
+    const Index m = static_cast<Index>(rows.size()), k = static_cast<Index>(pos_.size());
+    out.setZero();
+    for (Index c = 0; c < m; ++c) out(rows[c], c) = 1.0;
+    for (Index c0 = 0; k > 0 && c0 < m; c0 += kChunk) {
+      const Index w = std::min(kChunk, m - c0);
+      SchurBlock s(k, w);
+      for (Index c = 0; c < w; ++c) s.col(c) = W_.row(rows[c0 + c]).head(k).transpose();
+      for (Index j = 0; j < k; ++j) s.row(j) -= out.row(pos_[j]).segment(c0, w);
+      const SchurBlock t = s_lu_.transpose().solve(s);
+      for (Index j = 0; j < k; ++j) out.row(pos_[j]).segment(c0, w) -= t.row(j);
+    }
+    if (!identity_) klu_.solve_transposed(out);
   }
 
   bool replace(Index r, const Vector& /*a*/) override {
     Index j = slot_[r];
     if (j < 0) {
-      if (static_cast<int>(pos_.size()) >= interval_) return false;
+      if (static_cast<int>(pos_.size()) >= max_updates_) return false;
       j = static_cast<Index>(pos_.size());
       pos_.push_back(r);
       slot_[r] = static_cast<int>(j);
     }
     W_.col(j) = pending_;
     const Index k = static_cast<Index>(pos_.size());
-    DenseMatrix S(k, k);
-    for (Index a = 0; a < k; ++a) S.row(a) = W_.row(pos_[a]).head(k);
-    s_lu_.compute(S);
+    S_.resize(k, k);
+    for (Index a = 0; a < k; ++a) S_.row(a) = W_.row(pos_[a]).head(k);
+    s_lu_.compute(S_);
     return s_lu_.rcond() > 1e-12;
   }
 
   long memory_bytes() const override {
-    return static_cast<long>(sizeof(double)) * (klu_.factor_nnz() + W_.size()) +
-           static_cast<long>(sizeof(int)) * klu_.factor_nnz();
+    const long factor = identity_ ? 0 : klu_.factor_nnz();
+    return static_cast<long>(sizeof(double)) * (factor + W_.size()) + static_cast<long>(sizeof(int)) * factor;
   }
 
  private:
-  // X ← B⁻ᵀ X = B₀⁻ᵀ (X − E_P S⁻ᵀ (W − E_P)ᵀ X), all columns in one KLU call.
-  template <class Block>
-  void solve_transposed_block(Block& X) const {
-    const Index k = static_cast<Index>(pos_.size());
-    if (k > 0) {
-      DenseMatrix s = W_.leftCols(k).transpose() * X;
-      for (Index j = 0; j < k; ++j) s.row(j) -= X.row(pos_[j]);
-      const DenseMatrix t = s_lu_.transpose().solve(s);
-      for (Index j = 0; j < k; ++j) X.row(pos_[j]) -= t.row(j);
-    }
-    klu_.solve_transposed(X);
+  // X ← B₀⁻¹ X.
+  void b0_solve(Vector& x) const {
+    if (!identity_) klu_.solve(x);
   }
 
   // y ← y − (W − E_P) S⁻¹ y_P, turning B₀⁻¹r into B⁻¹r.
   void correct(Vector& y) const {
     const Index k = static_cast<Index>(pos_.size());
     if (k == 0) return;
-    Vector yp(k);
+    SchurVector yp(k);
     for (Index j = 0; j < k; ++j) yp(j) = y(pos_[j]);
-    const Vector t = s_lu_.solve(yp);
+    const SchurVector t = s_lu_.solve(yp);
     y.noalias() -= W_.leftCols(k) * t;
     for (Index j = 0; j < k; ++j) y(pos_[j]) += t(j);
   }
 
   LemkeColumns cols_;
-  int interval_;
+  int max_updates_;
   sparse::KluLu klu_;
+  bool identity_ = false;   // B₀ = I: klu_ is not used
   std::vector<Index> pos_;  // replaced positions P
   std::vector<int> slot_;   // slot of a position in P, or −1
   DenseMatrix W_;           // B₀⁻¹ C, column j for position pos_[j]
-  Eigen::PartialPivLU<DenseMatrix> s_lu_;
+  SchurMatrix S_;           // S = E_Pᵀ W
+  Eigen::PartialPivLU<SchurMatrix> s_lu_;
+  SparseMatrix B0_;         // B₀ (CSC), input of KLU
   Vector pending_;          // B₀⁻¹ c of the last solve_column
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // Reader for QPS files (free-format MPS with QUADOBJ/QMATRIX quadratic sections), as used
-// by the Maros–Meszaros test set. Conventions (DESIGN §3):
+// by the Maros–Meszaros test set. Conventions:
 // - objective ½xᵀPx + qᵀx + r; the objective row's RHS entry is −r;
 // - QUADOBJ lists the lower triangle of P (one entry per off-diagonal pair), QMATRIX the
 //   full symmetric matrix (both entries of each pair; they must agree); P is returned as
@@ -12,7 +12,7 @@
 //   bounds [0, +∞); an UP bound < 0 on a variable whose lower bound is still the default 0
 //   sets the lower bound to −∞ (the classic MPS rule); integer bound types are rejected;
 // - every constraint row becomes a row of QpProblem::G with bounds [l, u] (A stays empty),
-//   in file order, so QpResult::z is the per-row multiplier of DESIGN §3.
+//   in file order, so QpResult::z holds one multiplier per constraint row, in file order.
 // Malformed input throws lcprelax::InputError "FILE:LINE: message".
 #include <lcprelax/kkt/qp_problem.hpp>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Solution errors computed exactly as Siconos numerics defines them, so that lcprelax's
-// results compare with that library's (DESIGN §3).
+// results compare with that library's.
 //
 // LCP (Siconos lcp_compute_error / lcp_compute_error_only, numerics/src/LCP):
 //     w = M z + q,   e = ‖z − max(0, z − w)‖₂   (componentwise max: the natural map)

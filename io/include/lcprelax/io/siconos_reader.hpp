@@ -1,5 +1,5 @@
 #pragma once
-// Readers for the Siconos numerics `.dat` problem files (DESIGN §3): linear complementarity
+// Readers for the Siconos numerics `.dat` problem files: linear complementarity
 // problems (LCP) and 2-D frictional contact problems (fc2d), as written by Siconos'
 // linearComplementarity_printInFile / frictionContact_printInFile and read by its
 // linearComplementarity_newFromFile / frictionContact_newFromFile.

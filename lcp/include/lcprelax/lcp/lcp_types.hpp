@@ -55,12 +55,7 @@ constexpr const char* to_string(LemkeMethod m) {
 struct LemkeSettings {
   /// automatic: dense when n ≤ dense_max_n, else sparse.
   LemkeMethod method = LemkeMethod::automatic;
-  /// Largest n solved densely by `automatic`: the measured switch point (bench/README.md;
-  /// `OMP_NUM_THREADS=1 bench_lemke --benchmark_repetitions=5`, median CPU time
-  /// sparse/dense): random sparse P-matrix LCPs 1.24 at n = 16, 0.97–1.10 at 24–32,
-  /// 0.65–0.77 at 48–64; generated fc2d piles 1.26–1.32 at n = 40–60, 0.86 at 80; Siconos
-  /// fc2d 0.43 at n = 44. Of 24, 32, 48 and 64, 32 loses least over these problems (sum
-  /// of |log ratio| where the other method was faster).
+  /// Largest n solved densely by `automatic` (measured crossover, bench/README.md).
   int dense_max_n = 32;
   /// Pivot limit; 0 means 50·(n + 1), plus 2ⁿ for n < 20 (enough for Murty's examples),
   /// capped at 10⁷. Contact LCPs take a few pivots per unknown.

@@ -15,11 +15,22 @@
 //   refactor_interval replacements: memory O(nnz(LU) + n·refactor_interval), no dense n×n
 //   array. Rows of B⁻¹ for the tie-breaks are formed only for rows still tied after the
 //   ratio test (one transposed solve each).
-// `automatic` uses dense for n ≤ dense_max_n (the switch point measured by
-// bench/bench_lemke, README). Both give the same pivot sequence up to roundoff in ties.
+// `automatic` uses dense for n ≤ dense_max_n (measured crossover, bench/README.md). Both
+// give the same pivot sequence up to roundoff in ties.
 //
 // Warm start: a basis (which of z_i / w_i is basic) whose basic solution is feasible
-// solves in zero pivots; otherwise the solve starts cold.
+// solves in zero pivots; otherwise the solve starts cold (from the all-w basis). When the
+// warm basis is the one the solver already holds factorized (the final basis of the
+// previous solve, M unchanged), it is not factorized again.
+//
+// Memory: setup() sizes everything the solver works with (the basis factorization's
+// arrays, x_B, the solved entering column, the ratio-test row lists, a buffer of B⁻¹ rows
+// for ties: n columns dense, min(n, 64) sparse). A repeated solve() of the same size then
+// allocates nothing on the dense basis; on the sparse basis only KLU's factorizations from
+// scratch allocate (klu_analyze/klu_factor: at a warm basis that is not already factored,
+// every refactor_interval pivots, and for the final basis), the pivots between them do
+// not. Exceptions: the tie buffer grows when more rows tie than ever before on this
+// solver, and the retries after a failure copy M.
 //
 // Backward: at a solution with complementary basis B (columns e_i for basic w_i and −M_:j
 // for basic z_j), the basic values are x_B = B⁻¹q, so for ℓ(z):
@@ -52,6 +63,10 @@ class LemkeSolver {
   /// Gradient of ℓ(z) given ∂ℓ/∂z; requires status solved (else std::logic_error).
   LcpGradient backward(const Vector& dl_dz) const;
   const LcpResult& result() const;
+  /// Instrumentation: hook(true) before and hook(false) after every factorization of the
+  /// basis from scratch (allocation-counting tests exclude KLU's factorizations with it);
+  /// nullptr (the default) for none.
+  void set_refactorization_hook(void (*hook)(bool starting));
 
  private:
   struct Impl;
