@@ -57,7 +57,7 @@ learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, st
   t.progress = !json && epochs > 0 && isatty(STDERR_FILENO);
   t.log_csv = log_csv;
   t.distributed = mpi::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
-  const std::string bad = t.validate();
+  const std::string bad = t.validation_error();
   if (!bad.empty()) throw InputError("training settings: " + bad);
   return t;
 }

@@ -1,4 +1,4 @@
-// `lcprelax learn block|polygon ...` (DESIGN §4): the parent subcommand. The learning
+// `lcprelax learn block|polygon ...` (docs/cli.md): the parent subcommand. The learning
 // applications register themselves (cli_common.hpp, register_learn_application) from
 // their own files, so each stays self-contained.
 #include "cli_common.hpp"

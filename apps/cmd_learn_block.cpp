@@ -4,7 +4,7 @@
 //  [--optimizer sgd|adam] [--lr α] [--momentum β] [--soft-nonnegativity] [--soft-lambdas]
 //  [--l1-softness] [--max-dissipation none|qp|ext] [--a1 … --a5] [--regularization ε]
 //  [--log FILE.csv]
-//  [--landscape OUT] [--json]` (DESIGN §4): learns the friction coefficient of the seeds'
+//  [--landscape OUT] [--json]` (docs/cli.md): learns the friction coefficient of the seeds'
 // 1-D block (Parmar, Halm & Posa, IROS 2021) from transitions (v, u, v_next), generated
 // from --true-mu (noise σ relative to the RMS of v_next, learn/block_dataset.hpp) or read
 // from --data.
@@ -117,7 +117,7 @@ int run_learn_block(const LearnBlockOptions& o) {
   s.relaxed.a4 = o.a[3];
   s.relaxed.a5 = o.a[4];
   s.relaxed.regularization = o.regularization;
-  const std::string bad = s.relaxed.validate();
+  const std::string bad = s.relaxed.validation_error();
   if (!bad.empty()) throw InputError("--a1 … --a5, --regularization: " + bad);
 
   double true_mu = o.true_mu;

@@ -1,4 +1,4 @@
-// `lcprelax learn polygon` (DESIGN §4, issue 5): learn μ, mass, inertia, the vertices (and
+// `lcprelax learn polygon` (docs/cli.md): learn μ, mass, inertia, the vertices (and
 // optionally the ground's height and angle) of a convex polygon tumbling on the ground from
 // generated transitions.
 //
@@ -29,7 +29,7 @@
 // Initial values: perturb_polygon_model(truth, learned kinds, F, K) — μ, mass, inertia times
 // 1 ± F, vertex coordinates and ground height ± F·radius/2, angle ± 0.1·F rad (random signs,
 // seed K); parameters not learned keep their true values.
-// Output: JSON per DESIGN §4 (method, true, initial, learned: name → value of the learned
+// Output: JSON per docs/cli.md (method, true, initial, learned: name → value of the learned
 // parameters; final_loss = mean training loss at the learned θ; epochs; seconds) plus
 // samples, validation_loss, relative_error (polygon_relative_error) and failed. --log: the
 // trainer's CSV per epoch (θ included). --plot OUT.ext: each learned parameter's relative

@@ -7,15 +7,20 @@
 // - on the 1-D block with m = mg = 1 the cost equals the seeds' formula written out by
 //   hand at the QP solution (a1‖Pλ+p−x̄‖² + a2λᵀ(Mλ+q) + ½ε‖λ‖²);
 // - an indefinite Hessian is reported as status nonconvex (policy report) or solved after
-//   a reported diagonal shift (policy shift); bad data are InputErrors naming the field.
+//   a reported diagonal shift (policy shift); bad data are InputErrors naming the field;
+// - a workspace reused over samples (QP values written in place while the pattern repeats,
+//   rebuilt on a pattern change) gives bit for bit the result of a fresh workspace.
 #include <lcprelax/learn/relaxed_lcp.hpp>
 #include <lcprelax/models/block1d.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <string>
 #include <random>
 
 namespace lcprelax::learn {
@@ -72,11 +77,11 @@ double max_diff(const RelaxedLcpGradient& a, const RelaxedLcpGradient& b) {
   return m;
 }
 
-std::vector<RelaxedLcpOptions> all_options() {
-  std::vector<RelaxedLcpOptions> out;
+std::vector<RelaxedLcpSettings> all_options() {
+  std::vector<RelaxedLcpSettings> out;
   for (int mask = 0; mask < 8; ++mask)
     for (MaxDissipation md : {MaxDissipation::none, MaxDissipation::qp, MaxDissipation::ext}) {
-      RelaxedLcpOptions o;
+      RelaxedLcpSettings o;
       o.soft_nonnegativity = mask & 1;
       o.soft_lambdas = mask & 2;
       o.l1_softness = mask & 4;
@@ -90,7 +95,7 @@ TEST(RelaxedLcp, EnvelopeEqualsAdjointOnRandomProblems) {
   std::mt19937_64 rng(7);
   int checked = 0;
   double worst = 0.0;
-  for (const RelaxedLcpOptions& o : all_options())
+  for (const RelaxedLcpSettings& o : all_options())
     for (int trial = 0; trial < 4; ++trial) {
       const RelaxedLcpData d = random_problem(rng, 3 + trial, 2);
       QpSettings qp;
@@ -113,7 +118,7 @@ TEST(RelaxedLcp, EnvelopeEqualsAdjointOnRandomProblems) {
 
 TEST(RelaxedLcp, EnvelopeEqualsFiniteDifferences) {
   std::mt19937_64 rng(11);
-  for (const RelaxedLcpOptions& o : all_options()) {
+  for (const RelaxedLcpSettings& o : all_options()) {
     const RelaxedLcpData d = random_problem(rng, 4, 2);
     RelaxedLcpSolver solver(o);
     const RelaxedLcpGradient g = solver.solve(d).gradient;
@@ -166,11 +171,71 @@ TEST(RelaxedLcp, IndefiniteHessianIsReportedOrShifted) {
   RelaxedLcpResult r = relaxed_lcp(d);
   EXPECT_EQ(r.status, RelaxedLcpStatus::nonconvex);
   EXPECT_TRUE(std::isnan(r.cost));
-  RelaxedLcpOptions o;
+  RelaxedLcpSettings o;
   o.nonconvex = NonconvexPolicy::shift;
   r = relaxed_lcp(d, o);
   EXPECT_EQ(r.status, RelaxedLcpStatus::solved) << r.message;
   EXPECT_GT(r.shift, 0.0);
+}
+
+bool same_bits(const SparseMatrix& a, const SparseMatrix& b) {
+  return a.nonZeros() == b.nonZeros() &&
+         std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr(),
+                    [](double x, double y) { return std::memcmp(&x, &y, sizeof(double)) == 0; });
+}
+
+bool same_bits(const Vector& a, const Vector& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+void expect_same_bits(const RelaxedLcpResult& a, const RelaxedLcpResult& b, const std::string& what) {
+  ASSERT_EQ(a.status, b.status) << what;
+  EXPECT_EQ(std::memcmp(&a.cost, &b.cost, sizeof(double)), 0) << what << ": cost " << a.cost << " vs " << b.cost;
+  EXPECT_EQ(a.shift, b.shift) << what;
+  EXPECT_EQ(a.iterations, b.iterations) << what;
+  EXPECT_TRUE(same_bits(a.qp_x, b.qp_x)) << what;
+  EXPECT_TRUE(same_bits(a.qp_z, b.qp_z)) << what;
+  EXPECT_TRUE(same_bits(a.gradient.dM, b.gradient.dM)) << what;
+  EXPECT_TRUE(same_bits(a.gradient.dP, b.gradient.dP)) << what;
+  EXPECT_TRUE(same_bits(a.gradient.dE, b.gradient.dE)) << what;
+  EXPECT_TRUE(same_bits(a.gradient.dq, b.gradient.dq)) << what;
+  EXPECT_TRUE(same_bits(a.gradient.dp, b.gradient.dp)) << what;
+  EXPECT_TRUE(same_bits(a.gradient.de, b.gradient.de)) << what;
+}
+
+TEST(RelaxedLcp, ReusedWorkspaceGivesTheFreshResultBitwise) {
+  std::mt19937_64 rng(5);
+  // Sizes 4, 4 (same pattern: values written in place), 5 (pattern change), 4 (again).
+  for (const RelaxedLcpSettings& o : all_options()) {
+    RelaxedLcpSolver reused(o);
+    for (Index n : {4, 4, 5, 4}) {
+      const RelaxedLcpData d = random_problem(rng, n, 2);
+      RelaxedLcpSolver fresh(o);
+      const RelaxedLcpResult expected = fresh.solve(d);
+      ASSERT_EQ(expected.status, RelaxedLcpStatus::solved) << expected.message;
+      expect_same_bits(reused.solve(d), expected,
+                       "soft_nonneg " + std::to_string(o.soft_nonnegativity) + " soft_lambdas " +
+                           std::to_string(o.soft_lambdas) + " l1 " + std::to_string(o.l1_softness) + " md " +
+                           to_string(o.max_dissipation) + " n " + std::to_string(n));
+    }
+  }
+  // Policy shift: the QP is assembled again for every tried δ.
+  RelaxedLcpSettings o;
+  o.nonconvex = NonconvexPolicy::shift;
+  RelaxedLcpSolver reused(o);
+  for (double m : {3.0, 2.0, 5.0}) {
+    RelaxedLcpData d;
+    d.M = sparse((DenseMatrix(2, 2) << 0, m, m, 0).finished());
+    d.q = Vector::Constant(2, 1.0);
+    d.P = sparse((DenseMatrix(1, 2) << 0.1, 0.2).finished());
+    d.p = Vector::Zero(1);
+    d.target = Vector::Constant(1, m);
+    RelaxedLcpSolver fresh(o);
+    const RelaxedLcpResult expected = fresh.solve(d);
+    ASSERT_EQ(expected.status, RelaxedLcpStatus::solved) << expected.message;
+    EXPECT_GT(expected.shift, 0.0);
+    expect_same_bits(reused.solve(d), expected, "shift, M offdiagonal " + std::to_string(m));
+  }
 }
 
 TEST(RelaxedLcp, BadDataNameTheField) {
@@ -189,7 +254,7 @@ TEST(RelaxedLcp, BadDataNameTheField) {
   d.q = Vector::Zero(2);
   d.target(0) = std::nan("");
   EXPECT_THROW(relaxed_lcp(d), InputError);
-  RelaxedLcpOptions o;
+  RelaxedLcpSettings o;
   o.a3 = -1.0;
   EXPECT_THROW(RelaxedLcpSolver solver(o), InputError);
   EXPECT_THROW(parse_max_dissipation("maybe"), InputError);

@@ -23,13 +23,12 @@ int resolve_threads(int threads) {
 namespace {
 
 // Result slots of the calling thread's last batch, reused by its next one. Each sample's
-// gradient is allocated by the thread that evaluates it; freeing the slots after every
-// batch put all those frees in the serial part, on the main thread, half of them into the
-// other threads' malloc arenas (their locks, no tcache), and left the workers allocating
-// from their arenas' bins: ~3-5% of a 2-thread pass of the block hard loss (400 samples).
-// Kept, a slot's previous gradient is freed when its new result is moved in, by the thread
-// that evaluates it, which then reuses that memory from its own cache. A nested call on the
-// same thread finds the cache empty (moved out) and uses fresh slots.
+// gradient is allocated by the thread that evaluates it. Kept, a slot's previous gradient
+// is freed when its new result is moved in, by the thread that evaluates it, which then
+// reuses that memory from its own cache; freeing the slots after every batch would put all
+// those frees in the serial part, on the main thread, half of them into the other threads'
+// malloc arenas (their locks, no tcache). A nested call on the same thread finds the cache
+// empty (moved out) and uses fresh slots.
 thread_local std::vector<SampleResult> slot_cache;
 
 std::vector<SampleResult> take_slots(std::size_t n) {

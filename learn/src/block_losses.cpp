@@ -35,7 +35,7 @@ BlockObjective::BlockObjective(const BlockDataset& data, const BlockLossSettings
     : data_(data), settings_(settings) {
   if (data_.samples.empty()) throw InputError("block loss: the dataset is empty");
   if (!(data_.mass > 0.0) || !(data_.mg > 0.0)) throw InputError("block loss: the dataset's mass and mg must be positive");
-  const std::string relaxed = settings.relaxed.validate();
+  const std::string relaxed = settings.relaxed.validation_error();
   if (!relaxed.empty()) throw InputError("relaxed loss options: " + relaxed);
   if (!std::isfinite(settings.convex_rho) || settings.convex_rho < 0.0)
     throw InputError("convex loss: rho must be finite and ≥ 0");

@@ -15,7 +15,7 @@ OptimizerKind parse_optimizer_kind(const std::string& s) {
   throw InputError("unknown optimizer '" + s + "' (sgd or adam)");
 }
 
-std::string OptimizerSettings::validate() const {
+std::string OptimizerSettings::validation_error() const {
   if (!(learning_rate > 0.0) || !std::isfinite(learning_rate)) return "learning_rate must be positive and finite";
   if (!(momentum >= 0.0 && momentum < 1.0)) return "momentum must be in [0, 1)";
   if (!(beta1 >= 0.0 && beta1 < 1.0)) return "beta1 must be in [0, 1)";
@@ -27,7 +27,7 @@ std::string OptimizerSettings::validate() const {
 }
 
 Optimizer::Optimizer(const OptimizerSettings& settings) : settings_(settings) {
-  const std::string error = settings.validate();
+  const std::string error = settings.validation_error();
   if (!error.empty()) throw InputError("optimizer settings: " + error);
 }
 

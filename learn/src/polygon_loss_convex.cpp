@@ -120,7 +120,7 @@ SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target_v,
   p1.P = upper_full(qp.P1);
   p1.q = qp.q1;
   p1.xl.setZero();
-  p1.G = full_pattern(qp.G1);  // Wnn λn + bn ≥ 0: with w > 0 the objective alone no longer implies it
+  p1.G = full_pattern(qp.G1);  // Wnn λn + bn ≥ 0: with w > 0 the objective alone does not imply it
   p1.l = qp.l1;
   p1.u = Vector::Constant(nc, kInf);
   QpProblem p2(n);

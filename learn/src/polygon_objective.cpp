@@ -35,7 +35,7 @@ PolygonLossSettings::PolygonLossSettings() {
 std::string PolygonLossSettings::validation_error() const {
   std::string e = lemke.validation_error();
   if (!e.empty()) return "lemke: " + e;
-  e = relaxed.validate();
+  e = relaxed.validation_error();
   if (!e.empty()) return "relaxed: " + e;
   if (!(std::isfinite(convex_rho) && convex_rho >= 0)) return "convex_rho: must be finite and >= 0";
   if (!(std::isfinite(convex_deviation) && convex_deviation >= 0)) return "convex_deviation: must be finite and >= 0";

@@ -1,11 +1,11 @@
 #pragma once
 // Per-thread solvers of the polygon losses (polygon_losses.hpp, PolygonSolvers), internal.
 //
-// Building a LemkeSolver or a QpSolver (and QpSolver::setup's symbolic analysis) for every
-// sample cost the hard and convex losses most of their heap allocations; one set per thread
-// is kept by PolygonObjective instead. Results do not depend on what a solver solved
-// before: Lemke's setup() resets it, QpSolver::update() only keeps the ordering and
-// analysis of the same pattern, and solve() restarts from the settings' regularization.
+// PolygonObjective keeps one set per thread, so that the hard and convex losses do not
+// build a LemkeSolver or a QpSolver (nor redo QpSolver::setup's symbolic analysis) for
+// every sample. Results do not depend on what a solver solved before: Lemke's setup()
+// resets it, QpSolver::update() only keeps the ordering and analysis of the same pattern,
+// and solve() restarts from the settings' regularization.
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/learn/polygon_losses.hpp>

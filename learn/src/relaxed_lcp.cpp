@@ -42,7 +42,7 @@ const char* to_string(RelaxedLcpStatus s) {
   return "unknown";
 }
 
-std::string RelaxedLcpOptions::validate() const {
+std::string RelaxedLcpSettings::validation_error() const {
   const double w[] = {a1, a2, a3, a4, a5, regularization};
   const char* names[] = {"a1", "a2", "a3", "a4", "a5", "regularization"};
   for (int i = 0; i < 6; ++i)
@@ -51,14 +51,14 @@ std::string RelaxedLcpOptions::validate() const {
   return {};
 }
 
-void RelaxedLcpData::validate(const RelaxedLcpOptions& options) const {
+void RelaxedLcpData::validate(const RelaxedLcpSettings& settings) const {
   auto fail = [](const std::string& m) { throw InputError("relaxed LCP data: " + m); };
   const Index n = M.rows();
   if (M.cols() != n || n == 0) fail("M must be square and non-empty");
   if (q.size() != n) fail("q has length " + std::to_string(q.size()) + ", expected " + std::to_string(n));
   if (P.cols() != n) fail("P must have " + std::to_string(n) + " columns");
   if (p.size() != P.rows() || target.size() != P.rows()) fail("p and the target must have P's row count");
-  const bool md = options.max_dissipation != MaxDissipation::none;
+  const bool md = settings.max_dissipation != MaxDissipation::none;
   if (md && (E.cols() != n || e.size() != E.rows())) fail("E must have n columns and e E's row count");
   auto finite = [](const SparseMatrix& A) {
     for (Index k = 0; k < A.outerSize(); ++k)
@@ -88,17 +88,25 @@ SparseMatrix on_pattern(const SparseMatrix& A, F f) {
   return out;
 }
 
+// Where each assembled entry goes in a compressed matrix: entry k (in emission order) at
+// position (row[k], col[k]) is stored in valuePtr()[slot[k]]; first[k] marks the first
+// entry of its slot (assigned; later ones are added).
+struct EntryMap {
+  std::vector<Index> row, col, slot;
+  std::vector<char> first;
+};
+
 }  // namespace
 
 struct RelaxedLcpSolver::Impl {
-  RelaxedLcpOptions opt;
+  RelaxedLcpSettings opt;
   QpSolver qp;
   bool qp_ready = false;
   QpProblem prob;
+  EntryMap h_map, g_map;     // entry maps of prob.P and prob.G
+  bool pattern_ready = false;
   // The convexity test only needs to know whether LLᵀ exists: Eigen's simplicial LLᵀ (no
-  // OpenMP, no BLAS). CHOLMOD's supernodal LLᵀ, used before, entered a serialized OpenMP
-  // region per supernode even on these tiny matrices, and each region's end barrier is a
-  // futex syscall: 8 per block sample, 74 per polygon sample (strace), in every thread.
+  // OpenMP, no BLAS, no synchronization between threads; these matrices are tiny).
   Eigen::SimplicialLLT<SparseMatrix, Eigen::Upper> llt;
   SparseMatrix llt_matrix;   // H + τI (storage reused between samples)
   SparseMatrix llt_pattern;  // pattern of the last analysis
@@ -111,36 +119,64 @@ struct RelaxedLcpSolver::Impl {
   bool qp_term() const { return opt.max_dissipation == MaxDissipation::qp; }
   bool ext_term() const { return opt.max_dissipation == MaxDissipation::ext; }
 
-  // H (upper), h, r, rows and bounds of the relaxed QP; `shift` adds δI to H_λλ.
+  // The entries of H (upper triangle) in a fixed order, as sink(row, col, value); entries
+  // at the same position are summed in this order. The sequence of positions depends only
+  // on the sparsity patterns of M, P, E and on the settings.
+  template <class Sink>
+  void hessian_entries(double shift, Sink&& sink) const {
+    const RelaxedLcpSettings& o = opt;
+    for (Index k = 0; k < data.M.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(data.M, k); it; ++it) {
+        const Index i = it.row(), j = it.col();
+        sink(std::min(i, j), std::max(i, j), (i == j ? 2.0 : 1.0) * o.a2 * it.value());
+      }
+    auto add_gram = [&sink](const SparseMatrix& A, double w) {
+      const SparseMatrix AtA = SparseMatrix(A.transpose()) * A;
+      for (Index k = 0; k < AtA.outerSize(); ++k)
+        for (SparseMatrix::InnerIterator it(AtA, k); it; ++it)
+          if (it.row() <= it.col()) sink(it.row(), it.col(), w * it.value());
+    };
+    add_gram(data.P, 2.0 * o.a1);
+    if (qp_term()) add_gram(data.E, 2.0 * o.a5);
+    for (Index i = 0; i < n; ++i) sink(i, i, o.regularization + shift);
+    const double ws = o.l1_softness ? 0.0 : o.a3, wt = o.l1_softness ? 0.0 : o.a4;
+    for (Index i = 0; i < ns; ++i) sink(n + i, n + i, ws + o.regularization);
+    for (Index i = 0; i < nt; ++i) sink(n + ns + i, n + ns + i, wt + o.regularization);
+  }
+
+  // The entries of the rows: M λ (+ s) ≥ −q; with soft λ also λ + t ≥ 0.
+  template <class Sink>
+  void row_entries(Sink&& sink) const {
+    for (Index k = 0; k < data.M.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(data.M, k); it; ++it) sink(it.row(), it.col(), it.value());
+    for (Index i = 0; i < ns; ++i) sink(i, n + i, 1.0);
+    for (Index i = 0; i < nt; ++i) {
+      sink(n + i, i, 1.0);
+      sink(n + i, n + ns + i, 1.0);
+    }
+  }
+
+  // H (upper), h, r, rows and bounds of the relaxed QP; `shift` adds δI to H_λλ. When the
+  // entry positions repeat those of the previous call, the values are written in place into
+  // prob.P and prob.G through the entry maps; otherwise both matrices are rebuilt from
+  // triplets and the maps made again. Both ways give the same values bit for bit (an entry
+  // is its first contribution plus the later ones in order, as setFromTriplets sums them).
   void assemble(double shift) {
-    const RelaxedLcpOptions& o = opt;
+    const RelaxedLcpSettings& o = opt;
     n = data.M.rows();
     ns = o.soft_nonnegativity ? n : 0;
     nt = o.soft_lambdas ? n : 0;
     const Index nv = n + ns + nt;
+    const Index mi = n + nt;
     const double inf = std::numeric_limits<double>::infinity();
-    std::vector<Triplet> th;
-    for (Index k = 0; k < data.M.outerSize(); ++k)
-      for (SparseMatrix::InnerIterator it(data.M, k); it; ++it) {
-        const Index i = it.row(), j = it.col();
-        th.emplace_back(std::min(i, j), std::max(i, j), (i == j ? 2.0 : 1.0) * o.a2 * it.value());
-      }
-    auto add_gram = [&th](const SparseMatrix& A, double w) {
-      const SparseMatrix AtA = SparseMatrix(A.transpose()) * A;
-      for (Index k = 0; k < AtA.outerSize(); ++k)
-        for (SparseMatrix::InnerIterator it(AtA, k); it; ++it)
-          if (it.row() <= it.col()) th.emplace_back(it.row(), it.col(), w * it.value());
-    };
-    add_gram(data.P, 2.0 * o.a1);
-    if (qp_term()) add_gram(data.E, 2.0 * o.a5);
-    for (Index i = 0; i < n; ++i) th.emplace_back(i, i, o.regularization + shift);
-    const double ws = o.l1_softness ? 0.0 : o.a3, wt = o.l1_softness ? 0.0 : o.a4;
-    for (Index i = 0; i < ns; ++i) th.emplace_back(n + i, n + i, ws + o.regularization);
-    for (Index i = 0; i < nt; ++i) th.emplace_back(n + ns + i, n + ns + i, wt + o.regularization);
-    prob = QpProblem(nv);
-    prob.P.resize(nv, nv);
-    prob.P.setFromTriplets(th.begin(), th.end());
-    prob.P.makeCompressed();
+    const bool sizes_match = pattern_ready && prob.num_variables() == nv && prob.num_inequalities() == mi;
+    if (!(sizes_match && write_in_place(h_map, prob.P, [&](auto&& sink) { hessian_entries(shift, sink); }) &&
+          write_in_place(g_map, prob.G, [&](auto&& sink) { row_entries(sink); }))) {
+      prob = QpProblem(nv);
+      build(h_map, prob.P, nv, nv, [&](auto&& sink) { hessian_entries(shift, sink); });
+      build(g_map, prob.G, mi, nv, [&](auto&& sink) { row_entries(sink); });
+      pattern_ready = true;
+    }
 
     const Vector res0 = data.p - data.target;
     prob.q = Vector::Zero(nv);
@@ -154,25 +190,67 @@ struct RelaxedLcpSolver::Impl {
       prob.q.segment(n, ns).setConstant(o.a3);
       prob.q.tail(nt).setConstant(o.a4);
     }
-    // Rows: M λ (+ s) ≥ −q; with soft λ also λ + t ≥ 0.
-    std::vector<Triplet> tg;
-    for (Index k = 0; k < data.M.outerSize(); ++k)
-      for (SparseMatrix::InnerIterator it(data.M, k); it; ++it) tg.emplace_back(it.row(), it.col(), it.value());
-    for (Index i = 0; i < ns; ++i) tg.emplace_back(i, n + i, 1.0);
-    for (Index i = 0; i < nt; ++i) {
-      tg.emplace_back(n + i, i, 1.0);
-      tg.emplace_back(n + i, n + ns + i, 1.0);
-    }
-    const Index mi = n + nt;
-    prob.G.resize(mi, nv);
-    prob.G.setFromTriplets(tg.begin(), tg.end());
-    prob.G.makeCompressed();
     prob.l = Vector::Zero(mi);
     prob.l.head(n) = -data.q;
     prob.u = Vector::Constant(mi, inf);
     prob.xl = Vector::Zero(nv);
     if (o.soft_lambdas) prob.xl.head(n).setConstant(-inf);
     prob.xu = Vector::Constant(nv, inf);
+  }
+
+  // Builds `A` (rows × cols, compressed) from the entries that `emit` produces and records
+  // where each entry went.
+  template <class Emit>
+  static void build(EntryMap& map, SparseMatrix& A, Index rows, Index cols, Emit&& emit) {
+    std::vector<Triplet> t;
+    map.row.clear();
+    map.col.clear();
+    emit([&](Index i, Index j, double v) {
+      t.emplace_back(i, j, v);
+      map.row.push_back(i);
+      map.col.push_back(j);
+    });
+    A.resize(rows, cols);
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+    const std::size_t count = t.size();
+    map.slot.resize(count);
+    map.first.assign(count, 0);
+    std::vector<char> seen(static_cast<std::size_t>(A.nonZeros()), 0);
+    const Index* outer = A.outerIndexPtr();
+    const Index* inner = A.innerIndexPtr();
+    for (std::size_t k = 0; k < count; ++k) {
+      const Index* b = inner + outer[map.col[k]];
+      const Index* e = inner + outer[map.col[k] + 1];
+      const Index s = static_cast<Index>(std::lower_bound(b, e, map.row[k]) - inner);
+      map.slot[k] = s;
+      map.first[k] = seen[static_cast<std::size_t>(s)] ? 0 : 1;
+      seen[static_cast<std::size_t>(s)] = 1;
+    }
+  }
+
+  // Writes the values that `emit` produces into A's value array by the map; false (A then
+  // partly written) when the entries' positions differ from the map's.
+  template <class Emit>
+  static bool write_in_place(const EntryMap& map, SparseMatrix& A, Emit&& emit) {
+    double* value = A.valuePtr();
+    const std::size_t count = map.slot.size();
+    std::size_t k = 0;
+    bool same = true;
+    emit([&](Index i, Index j, double v) {
+      if (!same) return;
+      if (k == count || map.row[k] != i || map.col[k] != j) {
+        same = false;
+        return;
+      }
+      double& dst = value[map.slot[k]];
+      if (map.first[k])
+        dst = v;
+      else
+        dst += v;
+      ++k;
+    });
+    return same && k == count;
   }
 
   // LLᵀ of H + τI (τ tiny: a PSD but singular H passes); true if it succeeds.
@@ -216,7 +294,7 @@ struct RelaxedLcpSolver::Impl {
   // ∂/∂data of the assembly: maps a gradient on (H upper, h, r, G, l) to the data.
   RelaxedLcpGradient chain(const SparseMatrix& gH, const Vector& gh, double gr, const SparseMatrix& gG,
                            const Vector& gl) const {
-    const RelaxedLcpOptions& o = opt;
+    const RelaxedLcpSettings& o = opt;
     // Ĝ: the symmetric gradient on the full λλ block.
     std::vector<Triplet> tsym;
     for (Index k = 0; k < gH.outerSize(); ++k)
@@ -271,7 +349,7 @@ struct RelaxedLcpSolver::Impl {
   }
 
   void envelope() {
-    const RelaxedLcpOptions& o = opt;
+    const RelaxedLcpSettings& o = opt;
     const Vector& lam = res.lambda;
     const Vector& z = res.multipliers;
     const Vector rho = data.P * lam + data.p - data.target;
@@ -297,18 +375,18 @@ struct RelaxedLcpSolver::Impl {
   }
 };
 
-RelaxedLcpSolver::RelaxedLcpSolver(RelaxedLcpOptions options, QpSettings qp_settings)
+RelaxedLcpSolver::RelaxedLcpSolver(RelaxedLcpSettings settings, QpSettings qp_settings)
     : impl_(std::make_unique<Impl>()) {
-  const std::string error = options.validate();
-  if (!error.empty()) throw InputError("relaxed LCP options: " + error);
-  impl_->opt = options;
+  const std::string error = settings.validation_error();
+  if (!error.empty()) throw InputError("relaxed LCP settings: " + error);
+  impl_->opt = settings;
   impl_->qp.set_settings(qp_settings);
 }
 RelaxedLcpSolver::~RelaxedLcpSolver() = default;
 RelaxedLcpSolver::RelaxedLcpSolver(RelaxedLcpSolver&&) noexcept = default;
 RelaxedLcpSolver& RelaxedLcpSolver::operator=(RelaxedLcpSolver&&) noexcept = default;
 
-const RelaxedLcpOptions& RelaxedLcpSolver::options() const { return impl_->opt; }
+const RelaxedLcpSettings& RelaxedLcpSolver::settings() const { return impl_->opt; }
 
 void RelaxedLcpSolver::warm_start(const RelaxedLcpResult& previous) {
   impl_->warm_x = previous.qp_x;
@@ -347,16 +425,9 @@ const RelaxedLcpResult& RelaxedLcpSolver::solve(const RelaxedLcpData& data, bool
   }
   m.res.assembly_seconds = since(t0);
   const auto t1 = Clock::now();
-  bool reuse = false;
-  try {
-    if (m.qp_ready) {
-      m.qp.update(m.prob);
-      reuse = true;
-    }
-  } catch (const InputError&) {
-    reuse = false;  // another pattern: analyse again
-  }
-  if (!reuse) {
+  if (m.qp_ready && m.qp.can_update(m.prob)) {
+    m.qp.update(m.prob);  // same pattern: ordering and symbolic analysis reused
+  } else {
     m.qp.setup(m.prob);
     m.qp_ready = true;
   }
@@ -421,8 +492,9 @@ RelaxedLcpGradient RelaxedLcpSolver::gradient_adjoint() {
   return g;
 }
 
-RelaxedLcpResult relaxed_lcp(const RelaxedLcpData& data, const RelaxedLcpOptions& options, const QpSettings& qp_settings) {
-  RelaxedLcpSolver solver(options, qp_settings);
+RelaxedLcpResult relaxed_lcp(const RelaxedLcpData& data, const RelaxedLcpSettings& settings,
+                             const QpSettings& qp_settings) {
+  RelaxedLcpSolver solver(settings, qp_settings);
   return solver.solve(data, true);
 }
 

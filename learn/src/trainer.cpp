@@ -29,10 +29,10 @@ void check_indices(const std::vector<Index>& s, Index n, const char* what) {
 
 }  // namespace
 
-std::string TrainSettings::validate() const {
+std::string TrainSettings::validation_error() const {
   if (epochs < 0) return "epochs must be ≥ 0";
   if (batch < 0) return "batch must be ≥ 0";
-  return optimizer.validate();
+  return optimizer.validation_error();
 }
 
 BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const std::vector<Index>& samples,
@@ -50,7 +50,7 @@ BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const
 
 TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<Index>& training,
                   const std::vector<Index>& validation, const TrainSettings& settings) {
-  const std::string error = settings.validate();
+  const std::string error = settings.validation_error();
   if (!error.empty()) throw InputError("training settings: " + error);
   if (training.empty()) throw InputError("training set is empty");
   check_indices(training, objective.num_samples(), "training");

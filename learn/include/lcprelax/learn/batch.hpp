@@ -6,7 +6,7 @@
 // with OpenMP (`threads` threads, thread ∈ [0, threads) so that f can use one workspace
 // per thread), stores each sample's result in its own slot, and then sums the slots
 // sequentially in the order of `samples`. The floating-point sum is therefore the same
-// for 1 and N threads: losses and gradients are bitwise identical (tests/learn_batch_test).
+// for 1 and N threads: losses and gradients are bitwise identical (tests/learn_infra_test.cpp).
 // A sample whose evaluation fails (ok = false, or f throws) is counted in `failed` and left
 // out of the sums; its message is kept in first_failure.
 //

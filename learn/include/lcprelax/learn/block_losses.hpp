@@ -1,7 +1,7 @@
 #pragma once
 // Per-sample losses of the 1-D frictional block (models/block1d.hpp) and their gradients
-// ∂ℓ/∂θ, as learn::Objective (trainer.hpp), for the three methods of DESIGN §1.5 and of
-// Parmar, Halm & Posa, "Fundamental Challenges in Deep Learning for Stiff Contact
+// ∂ℓ/∂θ, as learn::Objective (trainer.hpp), for the three methods (hard, relaxed, convex)
+// of Parmar, Halm & Posa, "Fundamental Challenges in Deep Learning for Stiff Contact
 // Dynamics", IROS 2021. Transition i = (v, u, v̄) (learn/block_dataset.hpp).
 //
 // Parameters θ (by name in the ParameterSet; any other name gets a zero gradient):
@@ -30,9 +30,10 @@
 // Workspaces: one solver per thread (prepare() sizes the list; each is made by the thread
 // that uses it, on its first sample, so that its memory comes from that thread's malloc
 // arena and never shares a cache line with another thread's solver), so symbolic analyses
-// are done once per thread; per-sample warm starts (Lemke basis; QP solution only if asked, see
-// BlockLossSettings) from the previous evaluation of the same sample. Evaluation of a sample does not depend on which thread
-// runs it, so 1 and N threads give bitwise-identical results (batch.hpp).
+// are done once per thread; per-sample warm starts (Lemke basis; QP solution only if asked,
+// see BlockLossSettings) from the previous evaluation of the same sample. Evaluation of a
+// sample does not depend on which thread runs it, so 1 and N threads give
+// bitwise-identical results (batch.hpp).
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/learn/block_dataset.hpp>
@@ -51,15 +52,15 @@ const char* to_string(BlockMethod m);
 BlockMethod parse_block_method(const std::string& s);
 
 struct BlockLossSettings {
-  RelaxedLcpOptions relaxed;   ///< options and weights of the relaxed loss
+  RelaxedLcpSettings relaxed;  ///< settings and weights of the relaxed loss
   double convex_rho = 0.0;     ///< ρ of the convex model (≥ 0; 0 = maximum dissipation)
   LemkeSettings lemke;         ///< hard
   QpSettings qp;               ///< relaxed and convex
   /// Per-sample warm starts: Lemke from the sample's last basis (hard), on by default; the
   /// interior point from the sample's last solution (relaxed, convex), off by default:
-  /// measured, warm-started QpSolver solves meet the tolerances but end on iterates whose
-  /// bound ratios s/z give adjoint gradients off by up to 1% (tests/learn_block_gradient_test
-  /// with warm_start_qp on), against 1e-5 cold.
+  /// warm-started QpSolver solves meet the tolerances but can end on iterates whose bound
+  /// ratios s/z give adjoint gradients off by up to 1% (tests/learn_block_gradient_test
+  /// with warm_start_qp on), against 1e-5 from a cold start.
   bool warm_start_lemke = true;
   bool warm_start_qp = false;
 };
@@ -99,8 +100,8 @@ class BlockObjective : public Objective {
 
   BlockDataset data_;
   BlockLossSettings settings_;
-  /// One cache line per thread: adjacent unpadded slots, written several times per sample,
-  /// cost the 2-thread hard loss ~30% of its throughput through false sharing (measured).
+  /// One cache line per thread: the slots are written several times per sample, and
+  /// adjacent unpadded slots would be shared between threads' caches (false sharing).
   struct alignas(64) ThreadTimings {
     BlockLossTimings t;
   };

@@ -28,8 +28,8 @@ struct OptimizerSettings {
   double epsilon = 1e-8;        ///< adam, > 0
   double decay = 0.0;           ///< schedule α/(1 + decay·k), ≥ 0
   double clip_norm = std::numeric_limits<double>::infinity();  ///< > 0
-  /// Empty if valid, else what is wrong.
-  std::string validate() const;
+  /// Empty if valid, else a message naming the first bad field.
+  std::string validation_error() const;
 };
 
 class Optimizer {

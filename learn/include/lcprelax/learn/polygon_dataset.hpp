@@ -18,7 +18,7 @@
 // as above), after the simulation. std::mt19937_64 with `seed`; the same data for every
 // thread count and run.
 //
-// Loaded data: a trajectory CSV (scenes/trajectory_csv.hpp, DESIGN §3) of exactly one
+// Loaded data: a trajectory CSV (scenes/trajectory_csv.hpp) of exactly one
 // body; u = 0 (the CSV has no force columns). Δt is the time difference of consecutive
 // frames, which must be the same for all (relative tolerance 1e-6) and steps must be
 // consecutive. Errors are InputError naming the source, line and step.

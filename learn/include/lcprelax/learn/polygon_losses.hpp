@@ -1,5 +1,5 @@
 #pragma once
-// Per-sample losses of the polygon learning problem and ∂ℓ/∂θ (DESIGN §1.5), from the
+// Per-sample losses of the polygon learning problem and ∂ℓ/∂θ (hard, relaxed, convex), from the
 // assembly of polygon_assembly.hpp (value + tangent per parameter). The target is the
 // sample's NEXT VELOCITY v̄ = v_{k+1} (m/s, m/s, rad/s; no weighting between linear and
 // angular components): the simulator's positions are post-stabilized (simulator.hpp), so
@@ -19,18 +19,17 @@
 //   relaxed QP is made convex by NonconvexPolicy::shift (relaxed_lcp.hpp), and the shift
 //   δ ≈ (a2 μ m)²/H_nn it needs penalizes the sliding speed γ, i.e. favours sticking.
 //   Polygon defaults therefore differ from relaxed_lcp.hpp's: a2 = 0.1 (δ ∝ a2²) and
-//   ε = 1e-6. Measured on the recovery problem of tests/learn_polygon_recovery_test.cpp
-//   (315 samples, 25% perturbation): a2 = 1 → mean loss at the truth 0.13 and μ learned
-//   2.5× too large; a2 = 0.1 → 1.3e-3 and every parameter within 3.4%; a2 = 0.02 → μ
-//   unidentifiable (learned 1.41, the complementarity term too weak).
-// convex (DESIGN §1.4 two-phase model, as models/contact_step.hpp solve_convex_model), with
+//   ε = 1e-6. On the recovery problem of tests/learn_polygon_recovery_test.cpp, a2 = 0.1
+//   recovers every parameter; a2 = 1 learns μ too large (the shift favours sticking) and
+//   a2 = 0.02 leaves μ unidentifiable (the complementarity term is too weak); the numbers
+//   are in bench/README.md.
+// convex (the two-phase model of models/contact_step.hpp solve_convex_model), with
 //   an L2 deviation penalty of weight w ≥ 0 in both subproblem objectives: the prediction's
 //   deviation from the target in the mass norm, (w/2)‖v⁺(λ) − v̄‖²_M, which with
 //   v⁺ = v* + M⁻¹Jᵀλ adds (w/2)λᵀWλ + wλᵀJ(v* − v̄) (+ const):
 //     1. min_{λn ≥ 0} ½λnᵀ(1+w)Wnn λn + λnᵀ(bn + wJn(v* − v̄)),  bn = Jn v* + max(φ,0)/Δt,
 //        s.t. Wnn λn + bn ≥ 0 (implied by optimality when w = 0; with w > 0 it must be
-//        explicit, else κ can be too small for phase 2 to be feasible — measured: phase 2
-//        primal infeasible on 30 of 300 samples without it)
+//        explicit, else κ can be too small for phase 2 to be feasible)
 //     2. κ = eᵀmax(λn¹, 0);  min ½λᵀ[(1+w)W + 2ρ diag(exp(φ)) diag(Wnn)]λ + λᵀ(Jv* + wJ(v* − v̄))
 //        s.t. Wn λ + bn ≥ 0, λn ≥ 0, eᵀλn ≤ κ(1 + s) + 1e-12, |λt| ≤ μλn
 //   (s = 1e-6, else 1e-4, 1e-2 as convex_model.cpp), ℓ = ‖v⁺(λ²) − v̄‖², gradient by
@@ -57,7 +56,7 @@ PolygonMethod parse_polygon_method(const std::string& s);
 struct PolygonLossSettings {
   PolygonMethod method = PolygonMethod::relaxed;
   LemkeSettings lemke;               ///< hard
-  RelaxedLcpOptions relaxed;         ///< relaxed (constructor: nonconvex = shift, a2 = 0.1, ε = 1e-6)
+  RelaxedLcpSettings relaxed;        ///< relaxed (constructor: nonconvex = shift, a2 = 0.1, ε = 1e-6)
   QpSettings qp;                     ///< relaxed and convex
   double convex_rho = 1e-3;          ///< ρ of the convex model (contact_step.hpp)
   double convex_deviation = 1.0;     ///< w of the deviation penalty, ≥ 0
@@ -65,12 +64,10 @@ struct PolygonLossSettings {
   /// Extra contact candidates (m, ≥ 0; polygon_active_vertices' extra_margin): vertices
   /// within the speculative margin + candidate_margin of the ground enter the sample's
   /// problem. With 0 (the simulator's active set), vertices displaced by a perturbed
-  /// geometry (25%: ±0.05 m per coordinate on the CLI's polygon) miss the contacts that
-  /// the data shows; measured on `lcprelax learn polygon`'s default data (seed 1) with the
-  /// 0 of earlier versions: 182 of 300 samples ended with a different active set (39 with
-  /// none) and mass/inertia absorbed the missing impulses (inertia 60% off after 150
-  /// epochs). At the truth the hard loss on that data stays 3e-30 (the data and the
-  /// per-sample model still agree), the relaxed one rises slightly (3.3e-3 → 3.6e-3).
+  /// geometry (25%: ±0.05 m per coordinate on the CLI's polygon) miss contacts that the
+  /// data show, and mass and inertia absorb the missing impulses. At the truth the extra
+  /// candidates leave the hard loss at roundoff and raise the relaxed one slightly. The
+  /// numbers are in bench/README.md.
   double candidate_margin = 0.05;
   PolygonLossSettings();
   std::string validation_error() const;  ///< empty if valid

@@ -1,6 +1,6 @@
 #pragma once
-// The learnable parameters θ of one convex polygon tumbling on a ground half-plane
-// (DESIGN §1.5, issue 5): the physical model and its ParameterSet (parameters.hpp).
+// The learnable parameters θ of one convex polygon tumbling on a ground half-plane: the
+// physical model and its ParameterSet (parameters.hpp).
 //
 // Model (SI units):
 // - shape: body-frame vertices (m), counter-clockwise. The BODY FRAME IS FIXED: its origin is

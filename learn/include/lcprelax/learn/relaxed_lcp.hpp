@@ -6,7 +6,7 @@
 // the prediction error (the "hard" loss, whose gradient vanishes where a bad prior makes
 // contacts stick), the prediction error is moved INTO the contact subproblem, which is
 // softened into a convex QP; the loss is the subproblem's optimal value. The formulation
-// (weights, options, the 1e-3·I regularization) follows the seeds' reference code.
+// (weights, settings, the 1e-3·I regularization) follows the seeds' reference code.
 //
 // Data of one sample: an LCP (sparse M n×n, q n) whose solution λ predicts the next state
 // linearly, x̂(λ) = Pλ + p (sparse P k×n, p k), and the observed next state x̄ (k).
@@ -36,13 +36,13 @@
 //   - NonconvexPolicy::report (default): status nonconvex, no QP solve, c = NaN;
 //   - NonconvexPolicy::shift: H_λλ += δI with the smallest δ = 10ᵏ·max(ε, 1e-8)
 //     (k = 0, 1, …, 12) for which LLᵀ succeeds; δ is reported in Result::shift and the
-//     shifted problem is the one solved and differentiated (c includes (δ/2)‖λ‖²). δ is
-//     independent of the data (it used to scale with ‖H‖∞, which made the envelope
-//     gradient, which holds δ fixed, miss ∂δ/∂θ): the gradient is exact except where a
-//     change of θ changes k (a kink of c). Scale the unknowns so that ε is meaningful.
+//     shifted problem is the one solved and differentiated (c includes (δ/2)‖λ‖²). δ does
+//     not depend on the data (no ‖H‖ factor), so the envelope gradient, which holds δ
+//     fixed, is exact except where a change of θ changes k (a kink of c). Scale the
+//     unknowns so that ε is meaningful.
 //
 // Gradient (envelope theorem; Milgrom & Segal 2002). At the optimum with the QpSolver's
-// multipliers (DESIGN §3: Hx + h + Gᵀz + z_bounds = 0, z < 0 on an active lower side), the
+// multipliers (qp_problem.hpp: Hx + h + Gᵀz + z_bounds = 0, z < 0 on an active lower side), the
 // Lagrangian is L = f(x; data) + Σᵢ zᵢ (Gᵢx − lᵢ) with rows Gx = Mλ (+ s), lower bound
 // l = −q; hence, with ρ = Pλ + p − x̄, σ = Eλ − e:
 //     ∂c/∂M_ij = a2 λi λj + zi λj,   ∂c/∂q = a2 λ + z,
@@ -71,7 +71,7 @@ MaxDissipation parse_max_dissipation(const std::string& s);
 
 enum class NonconvexPolicy { report, shift };
 
-struct RelaxedLcpOptions {
+struct RelaxedLcpSettings {
   double a1 = 1.0;    ///< weight of the prediction error ‖Pλ + p − x̄‖²
   double a2 = 1.0;    ///< weight of the complementarity term λᵀ(Mλ + q)
   double a3 = 20.0;   ///< weight of the nonnegativity slacks s (soft_nonnegativity)
@@ -83,8 +83,8 @@ struct RelaxedLcpOptions {
   MaxDissipation max_dissipation = MaxDissipation::none;
   double regularization = 1e-3;     ///< ε of (ε/2)‖x‖² (the seeds' 1e-3·I), ≥ 0
   NonconvexPolicy nonconvex = NonconvexPolicy::report;
-  /// Empty if valid (weights finite and ≥ 0, a1 > 0), else a message naming the field.
-  std::string validate() const;
+  /// Empty if valid (weights finite and ≥ 0, a1 > 0), else a message naming the first bad field.
+  std::string validation_error() const;
 };
 
 /// One sample's data. E, e are used only with max_dissipation qp or ext (may be empty).
@@ -96,8 +96,9 @@ struct RelaxedLcpData {
   Vector target;    ///< x̄, k
   SparseMatrix E;   ///< r×n
   Vector e;         ///< r
-  /// Throws InputError naming the first inconsistent or non-finite field.
-  void validate(const RelaxedLcpOptions& options) const;
+  /// Checks the data against `settings` (E and e only with max dissipation qp or ext):
+  /// throws InputError naming the first inconsistent or non-finite field.
+  void validate(const RelaxedLcpSettings& settings) const;
 };
 
 enum class RelaxedLcpStatus { solved, nonconvex, qp_failed };
@@ -129,18 +130,22 @@ struct RelaxedLcpResult {
   double assembly_seconds = 0.0, solve_seconds = 0.0, gradient_seconds = 0.0;
 };
 
-/// A reusable workspace: keeps the QpSolver (symbolic analysis done once per sparsity
-/// pattern, numeric refactorization on new values) and the convexity check's factor. Not
-/// thread-safe: one per thread. Samples with different patterns may share a workspace
-/// (it re-analyses on a pattern change).
+/// A reusable workspace: keeps the relaxed QP, the QpSolver (symbolic analysis done once
+/// per sparsity pattern, numeric refactorization on new values) and the convexity check's
+/// factor. While the sparsity patterns of M, P, E repeat, the new values are written into
+/// the QP's existing matrices in place and QpSolver::update() reuses the analysis; on
+/// another pattern the QP is built from triplets and analysed again. Both paths give the
+/// same result bit for bit. Not thread-safe: one per thread. Samples with different
+/// patterns may share a workspace.
 class RelaxedLcpSolver {
  public:
-  explicit RelaxedLcpSolver(RelaxedLcpOptions options = {}, QpSettings qp_settings = {});
+  /// Throws InputError when settings.validation_error() or qp_settings is not valid.
+  explicit RelaxedLcpSolver(RelaxedLcpSettings settings = {}, QpSettings qp_settings = {});
   ~RelaxedLcpSolver();
   RelaxedLcpSolver(RelaxedLcpSolver&&) noexcept;
   RelaxedLcpSolver& operator=(RelaxedLcpSolver&&) noexcept;
 
-  const RelaxedLcpOptions& options() const;
+  const RelaxedLcpSettings& settings() const;
   /// Solves the relaxed QP for `data` (validated; throws InputError on bad data), and,
   /// when `gradient` is true, fills Result::gradient by the envelope theorem (+ one
   /// adjoint solve in ext mode). The reference stays valid until the next call.
@@ -157,7 +162,7 @@ class RelaxedLcpSolver {
 };
 
 /// One-shot convenience: a fresh workspace, solve with gradient.
-RelaxedLcpResult relaxed_lcp(const RelaxedLcpData& data, const RelaxedLcpOptions& options = {},
+RelaxedLcpResult relaxed_lcp(const RelaxedLcpData& data, const RelaxedLcpSettings& settings = {},
                              const QpSettings& qp_settings = {});
 
 }  // namespace lcprelax::learn

@@ -55,7 +55,7 @@ struct TrainSettings {
   /// identical on every rank and equal those of one process. Progress and the CSV log
   /// are written by rank 0 only. Without MPI (or with one rank) it changes nothing.
   bool distributed = false;
-  std::string validate() const;   ///< empty if valid
+  std::string validation_error() const;  ///< empty if valid, else a message naming the first bad field
 };
 
 struct EpochRecord {
