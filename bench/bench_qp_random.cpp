@@ -35,7 +35,7 @@ using lcprelax::QpStatus;
 using lcprelax::bench::RandomQp;
 
 constexpr std::uint64_t kSeed = 2024;
-constexpr double kTargetRatio = 0.2;  // DESIGN §5: backward ≤ 0.2 × forward for n ≥ 10⁴
+constexpr double kTargetRatio = 0.2;  // target: backward ≤ 0.2 × forward for n ≥ 10⁴
 
 QpSettings bench_settings() {
   QpSettings s;  // library defaults: eps_abs = 1e-9, eps_rel = 0

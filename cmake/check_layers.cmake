@@ -1,21 +1,14 @@
 # Fails when a layer includes a header of a layer it may not use (an upward include) or
 # when the allowed uses form a cycle. Run as
 #   cmake -DSOURCE_DIR=<repository> -P cmake/check_layers.cmake
-# (ctest: architecture_layers). The map below is the layer graph of docs/architecture.md;
-# each layer's CMakeLists.txt links exactly these targets.
+# (ctest: architecture_layers). The layer graph is cmake/LcprelaxLayers.cmake, the same map
+# from which each layer's target links the layers below it.
 cmake_minimum_required(VERSION 3.25)
-set(_allowed_core "")
-set(_allowed_mpi core)
-set(_allowed_sparse core mpi)
-set(_allowed_kkt core mpi sparse)
-set(_allowed_lcp core sparse kkt)
-set(_allowed_io core sparse kkt)
-set(_allowed_world core)
-set(_allowed_contact core world)
-set(_allowed_models core sparse kkt lcp io world contact)
-set(_allowed_scenes core world contact models)
-set(_allowed_learn core mpi sparse kkt lcp world contact models scenes)
-set(_layers core mpi sparse kkt lcp io world contact models scenes learn)
+include("${CMAKE_CURRENT_LIST_DIR}/LcprelaxLayers.cmake")
+set(_layers ${LCPRELAX_LAYERS})
+foreach(_layer IN LISTS _layers)
+  set(_allowed_${_layer} ${LCPRELAX_LAYER_USES_${_layer}})
+endforeach()
 
 set(_violations "")
 foreach(_layer IN LISTS _layers)

@@ -85,7 +85,8 @@ double Iterate::mu() const {
 }
 
 void Iterate::compute_side_residuals(const StandardForm& f) {
-  vg = f.G * x;
+  vg.resize(f.mg);
+  vg.noalias() = f.G * x;
   side_residual(g_lower, vg);
   side_residual(g_upper, vg);
   side_residual(b_lower, x);
@@ -93,8 +94,8 @@ void Iterate::compute_side_residuals(const StandardForm& f) {
 }
 
 void Iterate::barrier_terms(Index mg, Index n, Vector& Dg, Vector& Db) const {
-  Dg = Vector::Zero(mg);
-  Db = Vector::Zero(n);
+  Dg.setZero(mg);
+  Db.setZero(n);
   add_barrier(g_lower, Dg);
   add_barrier(g_upper, Dg);
   add_barrier(b_lower, Db);
@@ -102,8 +103,8 @@ void Iterate::barrier_terms(Index mg, Index n, Vector& Dg, Vector& Db) const {
 }
 
 void Iterate::xi_terms(Index mg, Index n, Vector& xig, Vector& xib) const {
-  xig = Vector::Zero(mg);
-  xib = Vector::Zero(n);
+  xig.setZero(mg);
+  xib.setZero(n);
   add_xi(g_lower, xig);
   add_xi(g_upper, xig);
   add_xi(b_lower, xib);
@@ -135,12 +136,22 @@ double Iterate::max_step() const {
 }
 
 void Iterate::signed_multipliers(Index mg, Index n, Vector& zg, Vector& zb) const {
-  zg = Vector::Zero(mg);
-  zb = Vector::Zero(n);
+  zg.setZero(mg);
+  zb.setZero(n);
   for (Index k = 0; k < g_upper.size(); ++k) zg(g_upper.idx[k]) += g_upper.z(k);
   for (Index k = 0; k < g_lower.size(); ++k) zg(g_lower.idx[k]) -= g_lower.z(k);
   for (Index k = 0; k < b_upper.size(); ++k) zb(b_upper.idx[k]) += b_upper.z(k);
   for (Index k = 0; k < b_lower.size(); ++k) zb(b_lower.idx[k]) -= b_lower.z(k);
+}
+
+void Iterate::signed_positive_parts(Index mg, Index n, bool use_steps, Vector& zg, Vector& zb) const {
+  const auto part = [use_steps](const Side& s, Index k) { return std::max(use_steps ? s.dz(k) : s.z(k), 0.0); };
+  zg.setZero(mg);
+  zb.setZero(n);
+  for (Index k = 0; k < g_upper.size(); ++k) zg(g_upper.idx[k]) += part(g_upper, k);
+  for (Index k = 0; k < g_lower.size(); ++k) zg(g_lower.idx[k]) -= part(g_lower, k);
+  for (Index k = 0; k < b_upper.size(); ++k) zb(b_upper.idx[k]) += part(b_upper, k);
+  for (Index k = 0; k < b_lower.size(); ++k) zb(b_lower.idx[k]) -= part(b_lower, k);
 }
 
 }  // namespace lcprelax::detail

@@ -4,7 +4,8 @@
 // Every finite side of a row of G̃ or of a variable bound is a one-sided constraint on a
 // quantity v (v = G̃x̃ for rows, v = x̃ for bounds) with slack s > 0 and multiplier z > 0:
 //     lower:  v − s = l          upper:  v + s = u
-// The signed multiplier of a quantity is ζ = z_upper − z_lower (DESIGN §3 convention).
+// The signed multiplier of a quantity is ζ = z_upper − z_lower (positive where the upper
+// side is active, the convention of QpProblem's multipliers).
 // Residuals: r = v − s − l (lower), r = v + s − u (upper), r_c = s∘z − σμ (+ corrector).
 // Eliminating ds and dz from the Newton equations gives dζ = D dv + ξ with
 //     D = Σ z/s,   ξ = Σ_upper (−r_c + z r)/s + Σ_lower (r_c + z r)/s,
@@ -39,9 +40,10 @@ struct Iterate {
   double mu() const;
   /// r for all sides from the current x (updates vg).
   void compute_side_residuals(const StandardForm& f);
-  /// Barrier terms D for rows (Dg, size mg) and bounds (Db, size n).
+  /// Barrier terms D for rows (Dg, size mg) and bounds (Db, size n). The outputs are
+  /// resized only when their size differs (the solver passes presized work vectors).
   void barrier_terms(Index mg, Index n, Vector& Dg, Vector& Db) const;
-  /// ξ for rows and bounds from the current r and rc.
+  /// ξ for rows and bounds from the current r and rc (outputs as in barrier_terms).
   void xi_terms(Index mg, Index n, Vector& xig, Vector& xib) const;
   /// Recovers ds, dz of every side from dx, dvg = G̃ dx and the solved row step dζ. The
   /// row sides are then corrected so that dz_u − dz_l equals dζ exactly: rebuilding dζ
@@ -51,8 +53,11 @@ struct Iterate {
   void recover_side_steps(const Vector& dx, const Vector& dvg, const Vector& dzeta);
   /// Largest α ≤ 1 keeping s + α ds ≥ 0 and z + α dz ≥ 0.
   double max_step() const;
-  /// Signed multipliers ζ of rows (mg) and bounds (n).
+  /// Signed multipliers ζ of rows (mg) and bounds (n) (outputs as in barrier_terms).
   void signed_multipliers(Index mg, Index n, Vector& zg, Vector& zb) const;
+  /// The same for the one-sided values max(z, 0), or max(dz, 0) with use_steps (the
+  /// candidate of a primal infeasibility certificate).
+  void signed_positive_parts(Index mg, Index n, bool use_steps, Vector& zg, Vector& zb) const;
   /// The four sides, without allocating (called several times per iteration).
   std::array<Side*, 4> sides() { return {&g_lower, &g_upper, &b_lower, &b_upper}; }
   std::array<const Side*, 4> sides() const { return {&g_lower, &g_upper, &b_lower, &b_upper}; }

@@ -148,7 +148,13 @@ bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backe
     factor_ = std::move(full);
     if (elim) build_full_pattern(f);  // restore the full pattern's maps
   }
-  work_.resize(K_.rows());
+  // Solve and refinement scratch, sized once here (solve() then allocates nothing).
+  work_.setZero(K_.rows());
+  for (Vector* v : {&ox_, &cx_, &nx_}) v->setZero(f.n);
+  for (Vector* v : {&oy_, &cy_, &ny_}) v->setZero(form_ == KktForm::full ? f.me : 0);
+  for (Vector* v : {&oz_, &cz_, &nz_, &wr_, &rzw_}) v->setZero(f.mg);
+  Db_.setZero(f.n);
+  Dg_.setZero(f.mg);
   backend_ = backend;
   return true;
 }
@@ -180,7 +186,8 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
   }
   // Every LDLᵀ reports its inertia: the full form must have n positive pivots (the primal
   // block) and the rest negative; the dense eliminated form (size n) must be SPD, i.e. n
-  // positive. CHOLMOD's LLᵀ of the eliminated form fails by itself when it is not SPD.
+  // positive. CHOLMOD's supernodal LLᵀ of the eliminated form fails by itself when it is
+  // not SPD.
   const auto wrong_inertia = [&](const sparse::FactorResult& r) {
     return r.ok() && factor_->reports_inertia() && factor_->inertia().positive != f.n;
   };
@@ -190,13 +197,14 @@ sparse::FactorResult KktSystem::factorize(const StandardForm& f, const Vector& D
   // δ dropped on the inequality block: 10,001 negative pivots for 10,000 rows, so δ was put
   // back and the solve stalled). The matrix is factorized once more with threshold pivoting,
   // whose inertia is that of a nearby matrix, before the wrong inertia is reported (and the
-  // QP solver regularizes more). Measured on LISWET1: 3 of its 97 KKT factorizations, the
+  // QP solver regularizes more). On LISWET1: 3 of its 97 KKT factorizations, the
   // pivoted ones with 10,000 negative pivots; solved in 95 iterations (CHOLMOD: 92).
   if (wrong_inertia(r) && factor_->can_refactorize_pivoted()) r = factor_->refactorize_pivoted();
   if (wrong_inertia(r)) {
     r.status = sparse::FactorStatus::zero_pivot;
     r.message = "KKT factor has " + std::to_string(factor_->inertia().positive) + " positive pivots, expected " +
-                std::to_string(f.n) + " (not quasi-definite)";
+                std::to_string(f.n) +
+                (form_ == KktForm::full ? " (not quasi-definite)" : " (not positive definite)");
   }
   return r;
 }

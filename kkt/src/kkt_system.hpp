@@ -17,6 +17,11 @@
 // pivot signs are checked in both forms (n positive pivots).
 // Solves are refined against K0 (iterative refinement; stop when the residual improves
 // less than 5× or reaches roundoff).
+// Memory: setup() sizes every scratch vector; factorize() (value scatter and numeric
+// refactorization) and solve() allocate nothing with the dense backend and CHOLMOD's
+// simplicial LDLᵀ (full form); CHOLMOD's supernodal numeric factorization (eliminated form)
+// allocates inside CHOLMOD: the permuted transpose of H, its dense update workspace and an
+// OpenMP team per parallel region.
 #include "standard_form.hpp"
 
 #include <lcprelax/kkt/qp_settings.hpp>

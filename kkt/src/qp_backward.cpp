@@ -13,9 +13,9 @@
 // s, z ≥ 1e-2), so factorizing there gives gradients off by percents (measured 6% on a
 // one-variable box QP). backward() then solves the problem again from the cold start
 // (result() is replaced by that solve; it agrees with the warm one to the tolerances) and
-// uses its final factorization. Without this, warm-started solves returned the gradient
-// of the previous problem and, with per-thread workspaces, results that depended on the
-// thread schedule (tests/qp_backward_warm_start_test.cpp).
+// uses its final factorization; reusing the last factorization instead would give the
+// gradient of the previous problem and, with per-thread workspaces, results that depend
+// on the thread schedule (tests/qp_backward_warm_start_test.cpp).
 #include "qp_solver_impl.hpp"
 
 #include <lcprelax/core/errors.hpp>

@@ -16,12 +16,15 @@
 namespace lcprelax::detail {
 namespace {
 
-double inf_norm(const Vector& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+template <class V>
+double inf_norm(const Eigen::MatrixBase<V>& v) {
+  return v.size() ? v.template lpNorm<Eigen::Infinity>() : 0.0;
+}
 
 }  // namespace
 
 bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p, const Vector& y, const Iterate& it,
-                                      bool use_steps, double eps, QpResult& r) {
+                                      bool use_steps, double eps, QpResult& r, Workspace& w) {
   // The norm and the support term first, from the sides as they are (no copies: this runs
   // every iteration); the candidate iterate and the residual only when the sign test passes.
   double nrm = inf_norm(y);
@@ -36,16 +39,17 @@ bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p,
   }
   if (!(nrm > 0) || !std::isfinite(nrm)) return false;
   if (!(supp < -std::max(eps, 1e-6) * nrm)) return false;
-  Iterate cand = it;
-  cand.y = y;
-  for (Side* s : cand.sides()) s->z = (use_steps ? s->dz : s->z).cwiseMax(0.0);
-  Vector zg, zb;
-  cand.signed_multipliers(f.mg, f.n, zg, zb);
-  Vector res = zb;
+  Vector &zg = w.cert_zg, &res = w.cert_n;
+  it.signed_positive_parts(f.mg, f.n, use_steps, zg, w.cert_zb);
+  res = w.cert_zb;
   if (f.me) res.noalias() += f.Et * y;
   if (f.mg) res.noalias() += f.Gt * zg;
   if (!(inf_norm(res) <= eps * nrm)) return false;
-  unscale_solution(f, p, cand, r);
+  // A certificate: the candidate iterate (the only copy, made once per solve at most).
+  Iterate cand = it;
+  cand.y = y;
+  for (Side* s : cand.sides()) s->z = (use_steps ? s->dz : s->z).cwiseMax(0.0);
+  unscale_solution(f, p, cand, r, w);
   double un = std::max({inf_norm(r.y), inf_norm(r.z), inf_norm(r.z_bounds)});
   if (un > 0) {
     r.y /= un;
@@ -55,15 +59,19 @@ bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p,
   return true;
 }
 
-bool dual_infeasibility_certificate(const StandardForm& f, const Vector& d, double eps, QpResult& r) {
+bool dual_infeasibility_certificate(const StandardForm& f, const Vector& d, double eps, QpResult& r, Workspace& w) {
   const double nrm = inf_norm(d);
   if (!(nrm > 0) || !std::isfinite(nrm)) return false;
   const double tol = eps * nrm;
   if (!(f.q.dot(d) < -std::max(eps, 1e-6) * nrm)) return false;
-  const Vector Pd = f.P.selfadjointView<Eigen::Upper>() * d;
+  Vector &Pd = w.cert_n, &Ed = w.cert_me, &Gd = w.cert_mg;
+  Pd.noalias() = f.P.selfadjointView<Eigen::Upper>() * d;
   if (!(inf_norm(Pd) <= tol)) return false;
-  if (f.me && !(inf_norm(f.E * d) <= tol)) return false;
-  const Vector Gd = f.G * d;
+  if (f.me) {
+    Ed.noalias() = f.E * d;
+    if (!(inf_norm(Ed) <= tol)) return false;
+  }
+  Gd.noalias() = f.G * d;
   for (Index i = 0; i < f.mg; ++i) {
     if (std::isfinite(f.gu(i)) && Gd(i) > tol) return false;
     if (std::isfinite(f.gl(i)) && Gd(i) < -tol) return false;

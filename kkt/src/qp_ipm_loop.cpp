@@ -46,9 +46,15 @@ void QpSolver::Impl::run(QpInfo& info) {
   may_drop_row_regularization = true;
   if (!initial_point(info)) {
     info.status = QpStatus::numerical_error;
+    result.x.resize(0);  // no iterate: an empty solution
+    result.y.resize(0);
+    result.z.resize(0);
+    result.z_bounds.resize(0);
     return;
   }
-  Vector rd, rp, dx, dy, dz, zg, zb, last_dx, last_dy;
+  detail::Workspace& w = work;
+  Vector &rd = w.rd, &rp = w.rp, &dx = w.dx, &dy = w.dy, &zg = w.zg, &zb = w.zb;
+  Vector &last_dx = w.last_dx, &last_dy = w.last_dy;
   bool have_step = false;
   int tiny_steps = 0;
   double best_merit = std::numeric_limits<double>::infinity();
@@ -56,17 +62,19 @@ void QpSolver::Impl::run(QpInfo& info) {
   double best_residual_merit = std::numeric_limits<double>::infinity();
   int best_residual_iteration = 0;
   detail::Residuals res;
-  QpResult best;
   for (info.iterations = 0;; ++info.iterations) {
     // Residuals of the current iterate (scaled) and termination tests (unscaled).
     it.compute_side_residuals(f);
     it.signed_multipliers(f.mg, f.n, zg, zb);
-    rd = f.P.selfadjointView<Eigen::Upper>() * it.x + f.q + zb;
+    rd.noalias() = f.P.selfadjointView<Eigen::Upper>() * it.x;
+    rd += f.q;
+    rd += zb;
     if (f.me) rd.noalias() += f.Et * it.y;
     if (f.mg) rd.noalias() += f.Gt * zg;
-    rp = f.E * it.x - f.be;
-    detail::unscale_solution(f, problem, it, result);
-    res = detail::compute_residuals(problem, result);
+    rp.noalias() = f.E * it.x;
+    rp -= f.be;
+    detail::unscale_solution(f, problem, it, result, w);
+    res = detail::compute_residuals(problem, result, w);
     fill_residuals(info, res);
     const double mu = it.mu();
     if (settings.verbose)
@@ -78,13 +86,14 @@ void QpSolver::Impl::run(QpInfo& info) {
     }
     if (have_step && info.iterations >= kFirstInfeasibilityCheck) {
       // The certificate functions write into result only when they return true.
-      if (detail::primal_infeasibility_certificate(f, problem, it.y, it, false, settings.eps_infeasible, result) ||
-          detail::primal_infeasibility_certificate(f, problem, last_dy, it, true, settings.eps_infeasible, result)) {
+      if (detail::primal_infeasibility_certificate(f, problem, it.y, it, false, settings.eps_infeasible, result, w) ||
+          detail::primal_infeasibility_certificate(f, problem, last_dy, it, true, settings.eps_infeasible, result,
+                                                   w)) {
         info.status = QpStatus::primal_infeasible;
         return;
       }
-      if (detail::dual_infeasibility_certificate(f, last_dx, settings.eps_infeasible, result) ||
-          detail::dual_infeasibility_certificate(f, it.x, settings.eps_infeasible, result)) {
+      if (detail::dual_infeasibility_certificate(f, last_dx, settings.eps_infeasible, result, w) ||
+          detail::dual_infeasibility_certificate(f, it.x, settings.eps_infeasible, result, w)) {
         info.status = QpStatus::dual_infeasible;
         return;
       }
@@ -137,7 +146,7 @@ void QpSolver::Impl::run(QpInfo& info) {
 
     // Predictor (affine scaling) direction.
     for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
-    info.refinement_steps += newton_step(rd, rp, dx, dy, dz);
+    info.refinement_steps += newton_step();
     if (f.mg > 0 && delta_rows > 0 && may_drop_row_regularization &&
         kkt.last_relative_residual() > kRefinementFailure) {
       // The refinement against K0 stalled. The factorized inequality block is −(1/Dg + δ), so
@@ -147,13 +156,13 @@ void QpSolver::Impl::run(QpInfo& info) {
       // negative definite by itself, so the matrix stays quasi-definite, hence strongly
       // factorizable, without δ there (Vanderbei 1995, "Symmetric quasidefinite matrices",
       // SIAM J. Optim. 5(1)): drop it for the rest of this solve and redo the predictor. On
-      // LISWET1 the refinement stalls from iteration 31 at a relative residual 1e-6 (it was
-      // 1e-14) and the primal residual then cannot go below 1e-7. If the factorization without
+      // LISWET1 the refinement stalls from iteration 31 at a relative residual 1e-6 (1e-14
+      // in the earlier iterations) and the primal residual then cannot go below 1e-7. If the factorization without
       // δ fails, factorize() restores it and the drop is not retried.
       delta_rows = 0.0;
       if (!factorize(info)) return give_up(QpStatus::numerical_error, "factorization failed");
       for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
-      info.refinement_steps += newton_step(rd, rp, dx, dy, dz);
+      info.refinement_steps += newton_step();
     }
     const double a_aff = it.max_step();
     double mu_aff = 0.0;
@@ -170,7 +179,7 @@ void QpSolver::Impl::run(QpInfo& info) {
       else
         s->rc = (s->s.cwiseProduct(s->z) + s->ds.cwiseProduct(s->dz)).array() - sigma * mu;
     }
-    info.refinement_steps += newton_step(rd, rp, dx, dy, dz);
+    info.refinement_steps += newton_step();
     const double amax = it.max_step();
     const double alpha = std::min(1.0, settings.step_fraction * amax);
     tiny_steps = alpha < 1e-10 ? tiny_steps + 1 : 0;
@@ -192,15 +201,18 @@ const QpResult& QpSolver::solve() {
   Impl& m = *impl_;
   if (!m.is_setup) throw std::logic_error("QpSolver::solve before setup");
   const auto t0 = Clock::now();
-  m.result = QpResult{};
-  QpInfo info;
+  // The result's vectors keep their storage (run() overwrites them); info starts afresh.
+  // Copying fresh_info reuses the message's capacity, where QpInfo{} would allocate.
+  m.result.info = m.fresh_info;
+  QpInfo& info = m.info;
+  info = m.fresh_info;
   info.message.clear();
   info.kkt_form = m.kkt.form();
   info.kkt_backend = m.kkt.backend();
   m.run(info);
   if (info.status == QpStatus::numerical_error) {
-    // Mehrotra's corrector can cycle on degenerate problems (measured: relaxed-LCP QPs of the
-    // polygon loss whose μ alternates 4e-6 ↔ 2e-5 until "no progress"). One more run from
+    // Mehrotra's corrector can cycle on degenerate problems (relaxed-LCP QPs of the polygon
+    // loss whose μ alternates between two values until "no progress"). One more run from
     // the start, with σ ≥ 0.1 and no second-order term (a plain primal–dual path-following
     // step), before the failure is reported; the first run's outcome is kept if it fails too.
     const QpResult first_result = m.result;
@@ -208,7 +220,6 @@ const QpResult& QpSolver::solve() {
     QpInfo second;
     second.kkt_form = info.kkt_form;
     second.kkt_backend = info.kkt_backend;
-    m.result = QpResult{};
     m.conservative = true;
     m.run(second);
     m.conservative = false;
@@ -241,8 +252,13 @@ const QpResult& QpSolver::solve() {
   info.kkt_factor_nnz = m.kkt.factor_nnz();
   info.reg_primal = m.rho;
   info.reg_dual = m.delta;
-  if (m.result.x.size() == m.problem.num_variables() && info.status != QpStatus::dual_infeasible)
-    info.objective = m.problem.objective(m.result.x);
+  if (m.result.x.size() == m.problem.num_variables() && info.status != QpStatus::dual_infeasible) {
+    // ½xᵀPx + qᵀx + r (QpProblem::objective, on the work vector Px).
+    const Vector& x = m.result.x;
+    Vector& Px = m.work.Px;
+    Px.noalias() = m.problem.P.selfadjointView<Eigen::Upper>() * x;
+    info.objective = 0.5 * x.dot(Px) + m.problem.q.dot(x) + m.problem.r;
+  }
   info.setup_seconds = m.setup_seconds;
   info.solve_seconds = seconds_since(t0);
   if (info.message.empty()) info.message = to_string(info.status);

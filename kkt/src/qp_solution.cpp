@@ -1,5 +1,6 @@
 // Unscaling of interior-point iterates and the unscaled residuals used for termination
-// (definitions in qp_settings.hpp; the duality gap follows qpbenchmark's definition).
+// (definitions in qp_settings.hpp; the duality gap follows qpbenchmark's definition), on
+// the solver's presized work vectors.
 #include "qp_solver_impl.hpp"
 
 #include <algorithm>
@@ -8,7 +9,11 @@
 namespace lcprelax::detail {
 namespace {
 
-double inf_norm(const Vector& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
+// ∞-norm of a vector or a vector expression (evaluated lazily, no temporary).
+template <class V>
+double inf_norm(const Eigen::MatrixBase<V>& v) {
+  return v.size() ? v.template lpNorm<Eigen::Infinity>() : 0.0;
+}
 
 long double long_dot(const Vector& a, const Vector& b) {
   long double s = 0.0L;
@@ -27,13 +32,27 @@ double support(double z, double lo, double hi) {
 
 }  // namespace
 
-void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r) {
+void Workspace::resize(const StandardForm& f, const QpProblem& p) {
+  const Index n = f.n, me = f.me, mg = f.mg;
+  for (Vector* v : {&rd, &dx, &last_dx, &zb, &xib, &rx, &xc, &rhs_x, &uzb, &cert_zb, &cert_n})
+    v->setZero(n);
+  for (Vector* v : {&rp, &dy, &last_dy, &ry, &yi, &cert_me}) v->setZero(me);
+  for (Vector* v : {&dz, &zg, &xig, &rz, &dvg, &gc, &uzg, &cert_zg, &cert_mg}) v->setZero(mg);
+  Px.setZero(p.num_variables());
+  Aty.setZero(p.num_variables());
+  Gtz.setZero(p.num_variables());
+  Ax.setZero(p.num_equalities());
+  Gx.setZero(p.num_inequalities());
+}
+
+void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r, Workspace& w) {
   r.x = f.Dx.cwiseProduct(it.x);
-  const Vector yi = (f.Ee.cwiseProduct(it.y)) / f.c;
-  Vector zg, zb;
-  it.signed_multipliers(f.mg, f.n, zg, zb);
+  Vector& yi = w.yi;
+  yi = (f.Ee.cwiseProduct(it.y)) / f.c;
+  it.signed_multipliers(f.mg, f.n, w.uzg, w.uzb);
+  const Vector &zg = w.uzg, &zb = w.uzb;
   r.y.resize(p.num_equalities());
-  r.z = Vector::Zero(p.num_inequalities());
+  r.z.setZero(p.num_inequalities());
   r.z_bounds = (zb.array() / (f.c * f.Dx.array())).matrix();
   for (Index k = 0; k < f.me; ++k) {
     switch (f.eq_source[k]) {
@@ -45,11 +64,14 @@ void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& 
   for (Index k = 0; k < f.mg; ++k) r.z(f.g_index[k]) = f.Eg(k) * zg(k) / f.c;
 }
 
-Residuals compute_residuals(const QpProblem& p, const QpResult& r) {
+Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w) {
   Residuals out;
-  const Vector Px = p.P.selfadjointView<Eigen::Upper>() * r.x;
-  const Vector Ax = p.A * r.x, Gx = p.G * r.x;
-  const Vector Aty = p.A.transpose() * r.y, Gtz = p.G.transpose() * r.z;
+  Vector &Px = w.Px, &Ax = w.Ax, &Gx = w.Gx, &Aty = w.Aty, &Gtz = w.Gtz;
+  Px.noalias() = p.P.selfadjointView<Eigen::Upper>() * r.x;
+  Ax.noalias() = p.A * r.x;
+  Gx.noalias() = p.G * r.x;
+  Aty.noalias() = p.A.transpose() * r.y;
+  Gtz.noalias() = p.G.transpose() * r.z;
   out.primal = inf_norm(Ax - p.b);
   for (Index i = 0; i < Gx.size(); ++i) out.primal = std::max(out.primal, dist_to_box(Gx(i), p.l(i), p.u(i)));
   for (Index j = 0; j < r.x.size(); ++j) out.primal = std::max(out.primal, dist_to_box(r.x(j), p.xl(j), p.xu(j)));

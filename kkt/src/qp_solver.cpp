@@ -39,6 +39,42 @@ void QpSolver::Impl::build(const QpProblem& p) {
   problem.A.makeCompressed();
   problem.G.makeCompressed();
   form = detail::build_standard_form(problem, settings.ruiz_iterations);
+  work.resize(form, problem);
+  warm.x.setZero(problem.num_variables());  // warm_start() copies into these
+  warm.y.setZero(problem.num_equalities());
+  warm.z.setZero(problem.num_inequalities());
+  warm.z_bounds.setZero(problem.num_variables());
+}
+
+namespace {
+
+// Copies the values of `from` into `to` (same pattern; `to` compressed).
+void copy_values(const SparseMatrix& from, SparseMatrix& to) {
+  if (from.isCompressed()) {
+    std::copy(from.valuePtr(), from.valuePtr() + from.nonZeros(), to.valuePtr());
+    return;
+  }
+  double* v = to.valuePtr();
+  for (Index j = 0; j < from.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(from, j); it; ++it) *v++ = it.value();
+}
+
+}  // namespace
+
+bool QpSolver::Impl::refresh(const QpProblem& p) {
+  if (!detail::same_signature(form, p)) return false;
+  copy_values(p.P, problem.P);
+  copy_values(p.A, problem.A);
+  copy_values(p.G, problem.G);
+  problem.q = p.q;
+  problem.r = p.r;
+  problem.b = p.b;
+  problem.l = p.l;
+  problem.u = p.u;
+  problem.xl = p.xl;
+  problem.xu = p.xu;
+  detail::refresh_standard_form(form, problem, settings.ruiz_iterations);
+  return true;
 }
 
 void QpSolver::setup(const QpProblem& problem) {
@@ -60,14 +96,13 @@ void QpSolver::update(const QpProblem& problem) {
     throw InputError("QpSolver::update: the sparsity pattern or sizes differ from setup(); call setup()");
   problem.validate();
   const auto t0 = Clock::now();
-  const std::vector<char> old_signature = impl_->form.signature;
-  impl_->build(problem);
-  if (impl_->form.signature != old_signature) {  // rows changed between equality/one/two-sided
+  if (!impl_->refresh(problem)) {  // rows changed between equality/one/two-sided: new structure
+    impl_->build(problem);
     std::string message;
     if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message))
       throw std::runtime_error("QpSolver::update: " + message);
   }
-  impl_->result = QpResult{};
+  impl_->result.info = impl_->fresh_info;
   impl_->setup_seconds = seconds_since(t0);
 }
 
@@ -115,23 +150,24 @@ bool QpSolver::Impl::factorize(QpInfo& info) {
   return true;
 }
 
-int QpSolver::Impl::newton_step(const Vector& rd, const Vector& rp, Vector& dx, Vector& dy, Vector& dz) {
-  Vector xig, xib;
-  it.xi_terms(form.mg, form.n, xig, xib);
-  const Vector rx = -rd - xib;
-  const Vector ry = -rp;
-  const Vector rz = (-xig.array() / Dg.array()).matrix();
-  const int steps = kkt.solve(form, rx, ry, rz, dx, dy, dz, settings.max_refinement);
-  const Vector dvg = form.G * dx;
-  it.recover_side_steps(dx, dvg, dz);
+int QpSolver::Impl::newton_step() {
+  detail::Workspace& w = work;
+  it.xi_terms(form.mg, form.n, w.xig, w.xib);
+  w.rx = -w.rd - w.xib;
+  w.ry = -w.rp;
+  w.rz = (-w.xig.array() / Dg.array()).matrix();
+  const int steps = kkt.solve(form, w.rx, w.ry, w.rz, w.dx, w.dy, w.dz, settings.max_refinement);
+  w.dvg.noalias() = form.G * w.dx;
+  it.recover_side_steps(w.dx, w.dvg, w.dz);
   return steps;
 }
 
 bool QpSolver::Impl::initial_point(QpInfo& info) {
+  detail::Workspace& w = work;
   it.init_sides(form);
   if (has_warm_start) {
     it.x = warm.x.cwiseQuotient(form.Dx);
-    it.y = Vector::Zero(form.me);
+    it.y.setZero(form.me);
     for (Index k = 0; k < form.me; ++k) {
       const Index s = form.eq_index[k];
       const double v = form.eq_source[k] == detail::EqSource::a_row   ? warm.y(s)
@@ -139,9 +175,9 @@ bool QpSolver::Impl::initial_point(QpInfo& info) {
                                                                       : warm.z_bounds(s);
       it.y(k) = form.c * v / form.Ee(k);
     }
-    Vector zg(form.mg);
+    Vector &zg = w.zg, &zb = w.zb;
     for (Index k = 0; k < form.mg; ++k) zg(k) = form.c * warm.z(form.g_index[k]) / form.Eg(k);
-    const Vector zb = form.c * warm.z_bounds.cwiseProduct(form.Dx);
+    zb = form.c * warm.z_bounds.cwiseProduct(form.Dx);
     it.compute_side_residuals(form);
     for (detail::Side* s : it.sides()) {
       const bool rows = (s == &it.g_lower || s == &it.g_upper);
@@ -157,17 +193,16 @@ bool QpSolver::Impl::initial_point(QpInfo& info) {
   }
   // Cold start: minimize ½x̃ᵀP̃x̃ + q̃ᵀx̃ + ½‖x̃ − x_c‖²_Db + ½‖G̃x̃ − g_c‖² s.t. Ẽx̃ = b̃, with
   // x_c, g_c the projections of 0 on the bounds, then slacks pushed to at least 1.
-  Db = Vector::Zero(form.n);
+  Db.setZero(form.n);
   for (Index j = 0; j < form.n; ++j)
     if (std::isfinite(form.xl(j)) || std::isfinite(form.xu(j))) Db(j) = 1.0;
-  Dg = Vector::Ones(form.mg);
+  Dg.setOnes(form.mg);
   if (!factorize(info)) return false;
-  const Vector xc = Vector::Zero(form.n).cwiseMax(form.xl).cwiseMin(form.xu);
-  const Vector gc = Vector::Zero(form.mg).cwiseMax(form.gl).cwiseMin(form.gu);
-  Vector dz;
-  info.refinement_steps +=
-      kkt.solve(form, -form.q + Db.cwiseProduct(xc), form.be, gc, it.x, it.y, dz, settings.max_refinement);
-  if (form.me == 0) it.y = Vector::Zero(0);
+  w.xc = Vector::Zero(form.n).cwiseMax(form.xl).cwiseMin(form.xu);
+  w.gc = Vector::Zero(form.mg).cwiseMax(form.gl).cwiseMin(form.gu);
+  w.rhs_x = -form.q + Db.cwiseProduct(w.xc);
+  info.refinement_steps += kkt.solve(form, w.rhs_x, form.be, w.gc, it.x, it.y, w.dz, settings.max_refinement);
+  if (form.me == 0) it.y.resize(0);
   // Slacks ŝ of the least-squares point and multiplier estimates ẑ = −ŝ (the row
   // multiplier of that solve), shifted into the interior by Mehrotra's heuristic
   // (Mehrotra 1992, §7; the estimate ẑ = −ŝ as in CVXOPT's starting point).

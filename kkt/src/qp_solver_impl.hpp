@@ -16,16 +16,36 @@ struct Residuals {
   double scale_p = 0, scale_d = 0, scale_g = 0;
 };
 
+/// Work vectors of one QpSolver, sized by resize() whenever the form is (re)built, so
+/// that solve() and update() run without heap allocation.
+struct Workspace {
+  // Scaled space: the iteration (qp_ipm_loop.cpp).
+  Vector rd, rp;                 ///< dual (n) and equality (me) residuals
+  Vector dx, dy, dz;             ///< Newton step (n, me, mg)
+  Vector last_dx, last_dy;       ///< previous step (infeasibility certificates)
+  Vector zg, zb;                 ///< signed multipliers of rows (mg) and bounds (n)
+  Vector xig, xib, rx, ry, rz, dvg;  ///< newton_step: ξ terms, right-hand sides, G̃·dx
+  Vector xc, gc, rhs_x;          ///< cold start: projections and right-hand side
+  // Unscaling and certificates.
+  Vector yi, uzg, uzb;           ///< unscale_solution (me, mg, n)
+  Vector cert_zg, cert_zb;       ///< certificate candidate's signed multipliers (mg, n)
+  Vector cert_n, cert_me, cert_mg;  ///< certificate residuals (n, me, mg)
+  // Unscaled space: residuals of the user's problem.
+  Vector Px, Ax, Gx, Aty, Gtz;   ///< P x (n), A x (ma), G x (mi), Aᵀy (n), Gᵀz (n)
+
+  void resize(const StandardForm& f, const QpProblem& p);
+};
+
 /// Maps the scaled iterate back to the user's variables and multipliers.
-void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r);
-Residuals compute_residuals(const QpProblem& p, const QpResult& r);
+void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r, Workspace& w);
+Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w);
 
 /// Infeasibility certificates on a candidate direction (scaled space); on success the
 /// certificate is written into r (unscaled, ∞-norm 1) and true is returned; otherwise r
-/// is left untouched.
+/// is left untouched. Allocation-free unless a certificate is found.
 bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p, const Vector& y, const Iterate& it,
-                                      bool use_steps, double eps, QpResult& r);
-bool dual_infeasibility_certificate(const StandardForm& f, const Vector& d, double eps, QpResult& r);
+                                      bool use_steps, double eps, QpResult& r, Workspace& w);
+bool dual_infeasibility_certificate(const StandardForm& f, const Vector& d, double eps, QpResult& r, Workspace& w);
 
 }  // namespace detail
 
@@ -36,6 +56,9 @@ struct QpSolver::Impl {
   detail::KktSystem kkt;
   detail::Iterate it;
   QpResult result;
+  QpInfo info;                  ///< the running solve's info (its message keeps its capacity)
+  QpInfo fresh_info;            ///< QpInfo{} (copied over info: no allocation, unlike QpInfo{})
+  detail::Workspace work;
   bool is_setup = false;
   bool has_warm_start = false;
   QpResult warm;                ///< warm-start point (unscaled)
@@ -44,7 +67,11 @@ struct QpSolver::Impl {
   double delta_rows = 0;        ///< its inequality-block part δ_g (δ, or 0 once dropped)
   double setup_seconds = 0;
 
+  /// Copies p (compressed) and builds the standard form and the workspace.
   void build(const QpProblem& p);
+  /// Copies the values of p (same pattern) into `problem` and refreshes the standard form
+  /// in place; false (nothing changed) when p classifies its rows differently.
+  bool refresh(const QpProblem& p);
   /// settings.kkt_backend with automatic resolved on the current form (dense_max_kkt).
   KktBackend kkt_backend() const {
     return detail::KktSystem::resolve_backend(settings.kkt_backend, form, settings.dense_max_kkt);
@@ -54,8 +81,9 @@ struct QpSolver::Impl {
   /// kConservativeSigma and no second-order term in the corrector.
   bool conservative = false;
   bool factorize(QpInfo& info);
-  /// Newton step for the current rd, rp and side rc; returns refinement steps.
-  int newton_step(const Vector& rd, const Vector& rp, Vector& dx, Vector& dy, Vector& dz);
+  /// Newton step for work.rd, work.rp and the sides' rc into work.dx, dy, dz and the
+  /// sides' ds, dz; returns refinement steps.
+  int newton_step();
   bool initial_point(QpInfo& info);  ///< false if the factorization failed
   void run(QpInfo& info);
 };

@@ -301,6 +301,16 @@ FactorResult CholmodEngine::solve(Eigen::Ref<DenseMatrix> B) {
   b.z = nullptr;
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
+  // cholmod_solve2 keeps X_, Y_, E_ between calls when their shapes are what it asks for.
+  // Its simplicial path asks for Y as max(4, nrhs) × n (leading dimension the same) and then
+  // shrinks Y's header to the columns it used (nrow = d = nrhs when nrhs < 4), so the next
+  // call would free and reallocate Y: the header is restored to the allocated shape first.
+  const std::size_t nr = std::max<std::size_t>(4, static_cast<std::size_t>(B.cols()));
+  if (Y_ && !L_->is_super && Y_->nzmax >= nr * static_cast<std::size_t>(n_)) {
+    Y_->nrow = nr;
+    Y_->ncol = static_cast<std::size_t>(n_);
+    Y_->d = nr;
+  }
   common_.status = CHOLMOD_OK;
   if (!cholmod_solve2(CHOLMOD_A, L_, &b, nullptr, &X_, nullptr, &Y_, &E_, &common_)) {
     return from_common(common_, "cholmod_solve2");

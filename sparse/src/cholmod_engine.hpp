@@ -47,15 +47,18 @@ class CholmodEngine {
   double dbound_;
   // Simplicial LDLᵀ is factorized from a pre-permuted copy S = upper(P A Pᵀ) under the
   // natural ordering: CHOLMOD then factorizes S in place, where with its own permutation
-  // it would build A(p,p) by two transposes on every factorize (measured: 7.5% of a pile
-  // step's instructions). The fill-reducing P is AMD's, from a first analysis of A.
+  // it would build A(p,p) by two transposes (allocating) on every factorize (7.5% of a
+  // pile step's instructions in a profile). The fill-reducing P is AMD's, from a first
+  // analysis of A. Refactorization and solves of a simplicial factor allocate nothing
+  // once the first solve has created the X/Y workspaces; the supernodal LLᵀ allocates
+  // inside CHOLMOD on every numeric factorization.
   std::vector<Index> perm_;   // pivot k is input row/column perm_[k]; empty: not used
   std::vector<Index> slot_;   // input entry → value slot of S (−1: lower entry, ignored)
   SparseMatrix S_;
   DenseMatrix rhs_;           // permuted right-hand sides of solve()
   cholmod_common common_{};
   cholmod_factor* L_ = nullptr;
-  cholmod_dense* X_ = nullptr;  // solve workspace, reused between solves
+  cholmod_dense* X_ = nullptr;  // cholmod_solve2 workspaces, reused between solves
   cholmod_dense* Y_ = nullptr;
   cholmod_dense* E_ = nullptr;
   Pattern pattern_;

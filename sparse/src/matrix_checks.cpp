@@ -10,9 +10,9 @@ namespace lcprelax::sparse::detail {
 
 CompressedRef::CompressedRef(const SparseMatrix& A) : ptr_(&A) {
   if (!A.isCompressed()) {
-    copy_ = A;
-    copy_.makeCompressed();
-    ptr_ = &copy_;
+    copy_.emplace(A);
+    copy_->makeCompressed();
+    ptr_ = &*copy_;
   }
 }
 

@@ -4,12 +4,14 @@
 // input validation, and FactorResult construction.
 #include <lcprelax/sparse/factorization.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace lcprelax::sparse::detail {
 
-/// Refers to A itself when A is compressed, otherwise to a compressed copy it owns.
+/// Refers to A itself when A is compressed (no allocation: the numeric refactorizations
+/// use it on every call), otherwise to a compressed copy it owns.
 class CompressedRef {
  public:
   explicit CompressedRef(const SparseMatrix& A);
@@ -18,7 +20,7 @@ class CompressedRef {
   const SparseMatrix& get() const { return *ptr_; }
 
  private:
-  SparseMatrix copy_;
+  std::optional<SparseMatrix> copy_;  // even an empty SparseMatrix allocates its outer index
   const SparseMatrix* ptr_;
 };
 

@@ -9,7 +9,7 @@
 //   value p at (i,j) means P(i,j) = P(j,i) = p.
 // - A (me×n), G (mi×n) sparse; l, u may hold −∞ / +∞ (one-sided or free rows); a row
 //   with l_i = u_i is an equality row. xl, xu may hold ±∞.
-// - Multiplier convention (DESIGN §3): y (one per row of A), z (one per row of G),
+// - Multiplier convention: y (one per row of A), z (one per row of G),
 //   z_bounds (one per variable) satisfy  P x + q + Aᵀ y + Gᵀ z + z_bounds = 0, with z_i > 0
 //   where the upper side u_i is active and z_i < 0 where the lower side l_i is active.
 #include <lcprelax/sparse/types.hpp>

@@ -73,13 +73,8 @@ struct QpSettings {
   KktBackend kkt_backend = KktBackend::automatic;
   /// automatic: largest full KKT dimension factorized densely, N = n + rows of A + rows of
   /// G with at least one finite side + fixed variables (xl = xu); other bounds add no row.
-  /// 0 = always cholmod.
-  /// Default from bench/bench_qp_dense_vs_sparse.cpp (update + solve + backward, CPU time,
-  /// 2-core Debian 12, 2026-11-24): on sparse banded random QPs (BM_QpSolve) dense and
-  /// CHOLMOD are equal at N ≈ 21–28 (dense 2× faster at N = 7, 7% slower at 42, 29% at 56);
-  /// on dense QPs shaped like the contact/relaxed-LCP subproblems (BM_QpSolveDenseData) dense
-  /// is as fast or faster up to N ≈ 192 (1.8× at N = 4, 1.4× at 96–128; runs vary ±20%).
-  /// 48 keeps the sparse-data loss small while the learning subproblems go dense.
+  /// 0 = always cholmod. 48: between the measured crossovers of sparse and dense problem
+  /// data (bench/bench_qp_dense_vs_sparse.cpp; measured crossover, bench/README.md).
   int dense_max_kkt = 48;
   bool verbose = false;           ///< one line per iteration on stderr
   /// When the iteration fails (stalls, diverges, hits max_iter), solve the auxiliary LPs of

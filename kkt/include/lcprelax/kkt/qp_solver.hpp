@@ -27,6 +27,16 @@
 // Lifecycle: setup(problem) → solve() → [update(values, same pattern) → solve()]* →
 // backward(dl_dx). update() refuses another sparsity pattern (throws InputError).
 //
+// Memory: setup() allocates the scaled problem, the KKT pattern and all work vectors. After
+// the first solve() (which creates the factorization's own workspaces), solve(),
+// update() with the same row classification, and warm_start() perform no heap allocation
+// with the dense backend (both forms) and CHOLMOD's LDLᵀ of the full form
+// (tests/qp_allocation_test.cpp); CHOLMOD's supernodal LLᵀ of the eliminated form
+// allocates inside each numeric factorization (the rest of the loop does not). Exceptions: a
+// result message longer than any before, a failed run (numerical_error: the conservative
+// second run copies the first result), infeasibility LPs, and update() when a row changes
+// between equality, one- and two-sided (a new structure: as setup()).
+//
 // Backward (OptNet, Amos & Kolter 2017, "OptNet: Differentiable Optimization as a Layer
 // in Neural Networks", ICML): at the solution, differentiating the KKT conditions
 //     Px + q + Aᵀy + Cᵀz = 0,  Ax = b,  diag(z)(Cx − h) = 0
@@ -63,8 +73,11 @@ class QpSolver {
   /// Validates (throws InputError), scales, builds the KKT pattern and index maps, and
   /// performs the symbolic analysis.
   void setup(const QpProblem& problem);
-  /// New values with the same sparsity pattern: reuses ordering and analysis.
-  /// Throws InputError if the pattern or sizes differ or the data are invalid.
+  /// New values with the same sparsity pattern: reuses ordering and analysis, rewrites the
+  /// scaled problem in place and redoes the Ruiz equilibration on it (the values equal
+  /// those of a fresh setup()). result() becomes unsolved (its vectors keep their storage
+  /// and old values until the next solve()). Throws InputError if the pattern or sizes
+  /// differ or the data are invalid.
   void update(const QpProblem& problem);
   /// True if setup() was done and `problem` has its sizes and sparsity pattern (the
   /// pattern test of update(), without an exception when it fails).

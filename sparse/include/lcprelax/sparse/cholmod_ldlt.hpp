@@ -8,6 +8,9 @@
 // (its sign kept; CHOLMOD's Common->dbound), otherwise an exactly zero or NaN pivot gives
 // FactorStatus::zero_pivot. inertia() reports the signs of D of the last factorization so
 // that a caller can verify a quasi-definite matrix factorized with the expected inertia.
+//
+// Memory: analyze() allocates; factorize() on the analysed pattern (compressed input) and
+// solve() allocate nothing once the first solve() has created CHOLMOD's solve workspace.
 #include <lcprelax/sparse/factorization.hpp>
 
 #include <memory>

@@ -1,6 +1,8 @@
 #pragma once
 // CHOLMOD supernodal LLᵀ for symmetric positive definite matrices. A pivot ≤ 0 gives
 // FactorStatus::not_positive_definite with the failing column in FactorResult::pivot.
+// Each numeric factorization allocates inside CHOLMOD (the permuted transpose of A, the
+// dense update workspace, OpenMP teams); solves reuse their workspace.
 #include <lcprelax/sparse/factorization.hpp>
 
 #include <memory>

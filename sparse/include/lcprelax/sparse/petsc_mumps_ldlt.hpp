@@ -35,9 +35,9 @@
 //
 // After a failed numeric phase (INFOG(1) < 0) the MUMPS factor is created and analysed
 // anew: PETSc's numeric factorization for MUMPS returns without factorizing while the
-// previous phase's INFOG(1) is negative, so before this every later factorize() of the
-// same analysis failed with the first error (on LISWET1 a workspace shortage, INFOG(1) =
-// −9, of the pivoted factorization then failed all later ones at any regularization).
+// previous phase's INFOG(1) is negative, so otherwise every later factorize() of the same
+// analysis would fail with the first error (on LISWET1 a workspace shortage, INFOG(1) =
+// −9, of the pivoted factorization would fail all later ones at any regularization).
 // INFOG(1) = −9 doubles the workspace margin ICNTL(14) (from 50%, up to 800%) and retries.
 //
 // Communicator:
