@@ -1,27 +1,30 @@
-// DenseLdlt (sparse/dense_ldlt.hpp): dense LDLᵀ with diagonal pivoting of seeded random
-// quasi-definite matrices K = [H Bᵀ; B −D] — multi-RHS residuals against the sparse
-// matrix, the inertia (n positive, m negative), agreement with CHOLMOD's LDLᵀ, a tiny
-// primal pivot that pivoting defers, refactorization on a fixed pattern, and the failure
-// statuses of the Factorization contract (pattern mismatch, NaN, zero pivot, lifecycle).
-#include <lcprelax/sparse/cholmod_ldlt.hpp>
+// DenseLdlt specifics: the dense factor of seeded random quasi-definite matrices
+// K = [H Bᵀ; B −D] with a dense H = CᵀC + h·I (its size and residuals), a tiny primal pivot
+// that diagonal pivoting defers, a matrix without a nonzero diagonal pivot (zero_pivot, or
+// ±τ with dynamic regularization), the inertia of a matrix that is not quasi-definite, and
+// the dimension limit. The Factorization contract (residuals, many right-hand sides,
+// refactorization, quasi-definite inertia, agreement with CholmodLdlt, failure statuses,
+// lifecycle, empty matrix) is checked for every backend in sparse_factorization_test.cpp.
+#include "factorization_test_support.hpp"
+
 #include <lcprelax/sparse/dense_ldlt.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <random>
-#include <vector>
 
 namespace {
 
 using lcprelax::DenseMatrix;
 using lcprelax::SparseMatrix;
-using lcprelax::Triplet;
 using lcprelax::Vector;
-using lcprelax::sparse::CholmodLdlt;
 using lcprelax::sparse::DenseLdlt;
 using lcprelax::sparse::FactorStatus;
+using lcprelax::test::random_rhs;
+using lcprelax::test::relative_residual;
+using lcprelax::test::residual_over_rhs;
+using lcprelax::test::symmetric_from_upper;
 
 // Upper triangle of K = [H Bᵀ; B −D]: H = CᵀC + h·I (n×n, SPD), B m×n with ~half of its
 // entries, D = diag in [d, 2d]. The pattern depends on (n, m) only; `seed` sets values.
@@ -42,38 +45,22 @@ SparseMatrix quasi_definite(int n, int m, unsigned seed, double h = 1.0, double 
   return S;
 }
 
-DenseMatrix full(const SparseMatrix& upper) {
-  const DenseMatrix U = DenseMatrix(upper);
-  return U.selfadjointView<Eigen::Upper>();
-}
-
-TEST(DenseLdlt, SolvesManyRightHandSidesWithTheQuasiDefiniteInertia) {
+// Dense H: the largest diagonal entries mix primal and dual rows, so pivoting interleaves
+// them; the inertia is still (n, m).
+TEST(DenseLdlt, StoresTheFullTriangleAndSolvesDenseBlocks) {
   for (unsigned seed : {1u, 2u, 3u}) {
     const int n = 7, m = 5;
     const SparseMatrix K = quasi_definite(n, m, seed);
     DenseLdlt f;
     ASSERT_TRUE(f.analyze(K).ok());
-    EXPECT_EQ(f.rows(), n + m);
     EXPECT_EQ(f.factor_nnz(), (n + m) * (n + m + 1) / 2);
     ASSERT_TRUE(f.factorize(K).ok());
     EXPECT_EQ(f.inertia().positive, n);
     EXPECT_EQ(f.inertia().negative, m);
-    EXPECT_EQ(f.inertia().zero, 0);
-    std::mt19937 gen(seed);
-    std::normal_distribution<double> N(0.0, 1.0);
-    const DenseMatrix B = DenseMatrix::NullaryExpr(n + m, 3, [&] { return N(gen); });
+    const DenseMatrix B = random_rhs(n + m, 3, seed);
     DenseMatrix X = B;
     ASSERT_TRUE(f.solve(X).ok());
-    const DenseMatrix R = full(K) * X - B;
-    EXPECT_LT(R.lpNorm<Eigen::Infinity>(), 1e-12 * (1.0 + B.lpNorm<Eigen::Infinity>())) << "seed " << seed;
-
-    CholmodLdlt ref;  // the same solution as CHOLMOD's sparse LDLᵀ
-    ASSERT_TRUE(ref.analyze(K).ok());
-    ASSERT_TRUE(ref.factorize(K).ok());
-    DenseMatrix Y = B;
-    ASSERT_TRUE(ref.solve(Y).ok());
-    EXPECT_LT((X - Y).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + Y.lpNorm<Eigen::Infinity>()));
-    EXPECT_EQ(ref.inertia().positive, f.inertia().positive);
+    EXPECT_LT(residual_over_rhs(symmetric_from_upper(K), X, B), 1e-12) << "seed " << seed;
   }
 }
 
@@ -92,50 +79,15 @@ TEST(DenseLdlt, TinyPrimalPivotStaysAccurate) {
   ASSERT_TRUE(f.analyze(K).ok());
   ASSERT_TRUE(f.factorize(K).ok());
   EXPECT_EQ(f.inertia().positive, n);
-  const Vector b = Vector::LinSpaced(n + m, -1.0, 1.0);
-  Vector x = b;
+  const DenseMatrix b = Vector::LinSpaced(n + m, -1.0, 1.0);
+  DenseMatrix x = b;
   ASSERT_TRUE(f.solve(x).ok());
-  const DenseMatrix A = full(K);
-  const double scale = A.lpNorm<Eigen::Infinity>() * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>();
-  EXPECT_LT((A * x - b).lpNorm<Eigen::Infinity>(), 1e-13 * scale);
+  EXPECT_LT(relative_residual(symmetric_from_upper(K), x, b), 1e-14);
 }
 
-TEST(DenseLdlt, RefactorizesOnTheSamePatternAndRefusesAnother) {
-  const SparseMatrix K1 = quasi_definite(5, 3, 1), K2 = quasi_definite(5, 3, 2);
-  ASSERT_TRUE(K1.nonZeros() == K2.nonZeros());
-  DenseLdlt f;
-  ASSERT_TRUE(f.analyze(K1).ok());
-  ASSERT_TRUE(f.factorize(K1).ok());
-  ASSERT_TRUE(f.factorize(K2).ok());
-  EXPECT_EQ(f.numeric_factorizations(), 2);
-  Vector x = Vector::Ones(8);
-  ASSERT_TRUE(f.solve(x).ok());
-  EXPECT_LT((full(K2) * x - Vector::Ones(8)).lpNorm<Eigen::Infinity>(), 1e-12);
-
-  const SparseMatrix other = quasi_definite(4, 4, 1);  // same size, another pattern
-  const auto r = f.factorize(other);
-  EXPECT_EQ(r.status, FactorStatus::pattern_mismatch);
-  EXPECT_EQ(f.numeric_factorizations(), 2);
-}
-
-TEST(DenseLdlt, ReportsStatusesInsteadOfAborting) {
-  DenseLdlt f;
-  Vector b = Vector::Ones(2);
-  EXPECT_EQ(f.factorize(quasi_definite(1, 1, 1)).status, FactorStatus::not_analyzed);
-  EXPECT_EQ(f.solve(b).status, FactorStatus::not_analyzed);
-  EXPECT_EQ(f.analyze(SparseMatrix(2, 3)).status, FactorStatus::invalid_input);
-
-  SparseMatrix K = quasi_definite(2, 1, 3);
-  ASSERT_TRUE(f.analyze(K).ok());
-  SparseMatrix bad = K;
-  bad.valuePtr()[0] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(f.factorize(bad).status, FactorStatus::invalid_input);
-  EXPECT_EQ(f.solve(b).status, FactorStatus::not_analyzed) << "no factor after a failed factorize()";
-  ASSERT_TRUE(f.factorize(K).ok());
-  Vector wrong = Vector::Ones(5);
-  EXPECT_EQ(f.solve(wrong).status, FactorStatus::invalid_input);
-
-  // [[0, 1], [1, 0]]: no diagonal pivot exists (not quasi-definite) → zero_pivot.
+// [[0, 1], [1, 0]]: no diagonal pivot exists (not quasi-definite) → zero_pivot; with
+// dynamic regularization τ the zero pivots become +τ and the factorization succeeds.
+TEST(DenseLdlt, NoNonzeroDiagonalPivotIsAZeroPivotUnlessRegularized) {
   SparseMatrix Z(2, 2);
   Z.insert(0, 0) = 0.0;
   Z.insert(0, 1) = 1.0;
@@ -148,7 +100,6 @@ TEST(DenseLdlt, ReportsStatusesInsteadOfAborting) {
   EXPECT_GE(r.pivot, 0);
   EXPECT_FALSE(r.message.empty());
 
-  // With dynamic regularization τ the zero pivots become +τ and the factorization succeeds.
   DenseLdlt reg(1e-8);
   ASSERT_TRUE(reg.analyze(Z).ok());
   ASSERT_TRUE(reg.factorize(Z).ok());
@@ -168,8 +119,18 @@ TEST(DenseLdlt, InertiaExposesANonQuasiDefiniteMatrix) {
   ASSERT_TRUE(f.analyze(K).ok());
   ASSERT_TRUE(f.factorize(K).ok());
   EXPECT_LT(f.inertia().positive, 3);
-  const Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(full(K));
+  const Eigen::SelfAdjointEigenSolver<DenseMatrix> eig(symmetric_from_upper(K));
   EXPECT_EQ(f.inertia().positive, (eig.eigenvalues().array() > 0).count()) << "Sylvester's law of inertia";
+}
+
+TEST(DenseLdlt, RefusesADimensionAboveTheLimit) {
+  SparseMatrix I(DenseLdlt::kMaxDimension + 1, DenseLdlt::kMaxDimension + 1);
+  I.setIdentity();
+  DenseLdlt f;
+  const auto r = f.analyze(I);
+  EXPECT_EQ(r.status, FactorStatus::out_of_memory);
+  EXPECT_FALSE(r.message.empty());
+  EXPECT_EQ(f.rows(), 0);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
-// KluLu: sparse LU of seeded random unsymmetric matrices — solve and transposed solve
-// residuals, refactorization with the kept pivot order, singular matrices, rcond.
+// KluLu specifics: refactorize() with the kept pivot order, numerically and structurally
+// singular unsymmetric matrices, the reciprocal condition estimate, and moves. The
+// Factorization contract (solve and transposed solve residuals on unsymmetric matrices
+// with a weak diagonal, many right-hand sides, refactorization, failure statuses,
+// lifecycle, empty matrix) is checked in sparse_factorization_test.cpp.
 #include "factorization_test_support.hpp"
 
 #include <lcprelax/sparse/klu_lu.hpp>
@@ -8,6 +11,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -38,50 +42,9 @@ SparseMatrix unsymmetric(int n, unsigned seed, double scale = 1.0) {
   return A;
 }
 
-
-
-TEST(KluLu, SolvesAndTransposeSolvesUnsymmetricSystems) {
-  for (unsigned seed : {1u, 2u, 3u}) {
-    const SparseMatrix A = unsymmetric(80, seed);
-    KluLu f;
-    ASSERT_TRUE(f.analyze(A).ok());
-    EXPECT_GT(f.factor_nnz(), 0);
-    const auto r = f.factorize(A);
-    ASSERT_TRUE(r.ok()) << r.message;
-    EXPECT_GE(f.factor_nnz(), A.nonZeros());
-    const DenseMatrix B = random_rhs(80, 3, seed + 10);
-    DenseMatrix X = B, Y = B;
-    ASSERT_TRUE(f.solve(X).ok());
-    ASSERT_TRUE(f.solve_transposed(Y).ok());
-    const DenseMatrix Ad(A);
-    // Threshold partial pivoting (KLU tol 0.001) allows some growth: 1e-11, not 1e-15.
-    EXPECT_LT(relative_residual(Ad, X, B), 1e-11) << "seed " << seed;
-    EXPECT_LT(relative_residual(Ad.transpose(), Y, B), 1e-11) << "seed " << seed;
-    EXPECT_GT((X - Y).cwiseAbs().maxCoeff(), 1e-6);  // A is not symmetric
-  }
-}
-
-TEST(KluLu, SolvesIntoABlockWithALeadingDimension) {
-  const SparseMatrix A = unsymmetric(30, 4);
-  KluLu f;
-  ASSERT_TRUE(f.analyze(A).ok());
-  ASSERT_TRUE(f.factorize(A).ok());
-  const DenseMatrix B = random_rhs(30, 2, 5);
-  DenseMatrix X = B;
-  ASSERT_TRUE(f.solve(X).ok());
-  DenseMatrix tall = DenseMatrix::Constant(33, 2, 7.0);
-  tall.topRows(30) = B;
-  ASSERT_TRUE(f.solve(tall.topRows(30)).ok());
-  EXPECT_EQ((tall.topRows(30) - X).cwiseAbs().maxCoeff(), 0.0);
-  EXPECT_EQ(tall.bottomRows(3).minCoeff(), 7.0);
-  DenseMatrix none(30, 0);
-  EXPECT_TRUE(f.solve(none).ok());
-}
-
 TEST(KluLu, RefactorizesWithTheKeptPivotOrder) {
   const SparseMatrix A1 = unsymmetric(60, 6);
   const SparseMatrix A2 = unsymmetric(60, 6, 1.5);  // same values scaled: pivots stay good
-  const SparseMatrix A3 = unsymmetric(60, 7);
   KluLu f;
   ASSERT_TRUE(f.analyze(A1).ok());
   EXPECT_EQ(f.refactorize(A1).status, FactorStatus::not_analyzed);  // needs factorize()
@@ -92,22 +55,17 @@ TEST(KluLu, RefactorizesWithTheKeptPivotOrder) {
   DenseMatrix x = b;
   ASSERT_TRUE(f.solve(x).ok());
   EXPECT_LT(relative_residual(DenseMatrix(A2), x, b), 1e-11);
-  ASSERT_TRUE(f.factorize(A3).ok());
-  x = b;
-  ASSERT_TRUE(f.solve(x).ok());
-  EXPECT_LT(relative_residual(DenseMatrix(A3), x, b), 1e-11);
   SparseMatrix other = A1;
   other.coeffRef(0, 59) += 1.0;
   if (A1.coeff(0, 59) != 0.0) other.coeffRef(1, 59) += 1.0;
-  EXPECT_EQ(f.factorize(other).status, FactorStatus::pattern_mismatch);
   EXPECT_EQ(f.refactorize(other).status, FactorStatus::pattern_mismatch);
   SparseMatrix nan = A1;
   nan.valuePtr()[5] = std::nan("");
   EXPECT_EQ(f.refactorize(nan).status, FactorStatus::invalid_input);
-  EXPECT_EQ(f.numeric_factorizations(), 3);
+  EXPECT_EQ(f.numeric_factorizations(), 2);
 }
 
-TEST(KluLu, ReportsSingularMatrices) {
+TEST(KluLu, ReportsNumericallyAndStructurallySingularMatrices) {
   // Rows 0 and 2 are equal: numerically singular.
   DenseMatrix D(3, 3);
   D << 1, 2, 3,
@@ -118,10 +76,7 @@ TEST(KluLu, ReportsSingularMatrices) {
   ASSERT_TRUE(f.analyze(A).ok());
   const auto r = f.factorize(A);
   EXPECT_EQ(r.status, FactorStatus::singular);
-  EXPECT_FALSE(r.message.empty());
   EXPECT_GE(r.pivot, 0);
-  DenseMatrix x = DenseMatrix::Ones(3, 1);
-  EXPECT_EQ(f.solve(x).status, FactorStatus::not_analyzed);
   // Structurally singular: column 1 is empty.
   std::vector<Triplet> t{{0, 0, 1.0}, {1, 0, 2.0}, {2, 2, 3.0}, {1, 2, 1.0}};
   SparseMatrix S(3, 3);
@@ -156,16 +111,11 @@ TEST(KluLu, EstimatesReciprocalCondition) {
   EXPECT_LT(f.rcond(), 1e-9);
 }
 
-TEST(KluLu, LifecycleAndEmptyMatrix) {
+TEST(KluLu, MovedFromStaysSafe) {
   KluLu f;
-  DenseMatrix x(2, 1);
-  EXPECT_EQ(f.solve(x).status, FactorStatus::not_analyzed);
-  EXPECT_EQ(f.analyze(SparseMatrix(2, 3)).status, FactorStatus::invalid_input);
   const SparseMatrix E(0, 0);
   ASSERT_TRUE(f.analyze(E).ok());
   ASSERT_TRUE(f.factorize(E).ok());
-  DenseMatrix e(0, 1);
-  EXPECT_TRUE(f.solve(e).ok());
   KluLu g(std::move(f));
   EXPECT_EQ(g.numeric_factorizations(), 1);
   EXPECT_EQ(f.rows(), 0);  // NOLINT(bugprone-use-after-move): moved-from stays safe
