@@ -1,5 +1,5 @@
 // Lemke peers: lcprelax's Lemke (dense and sparse basis) and Siconos numerics on every
-// Siconos test problem (DESIGN §5: "Siconos problems to error ≤ 1e-10").
+// Siconos test problem (target: Siconos problems to error ≤ 1e-10).
 //
 //   run_lemke_peers [DATA_DIR] [--out lemke_peers.csv] [--dense-max-contacts 320]
 //                   [--nsgs-max-iter 100000] [--pile NC]... [--refactor-interval K]
@@ -58,7 +58,7 @@ using lcprelax::bench::SiconosResult;
 
 namespace {
 
-constexpr double kTarget = 1e-10;  // DESIGN §5
+constexpr double kTarget = 1e-10;  // Siconos error target
 
 struct Options {
   fs::path dir = LCPRELAX_SICONOS_DATA_DIR;

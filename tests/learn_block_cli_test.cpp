@@ -1,4 +1,4 @@
-// `lcprelax learn block` (DESIGN §4): the JSON contract (method, true, initial, learned,
+// `lcprelax learn block` (docs/cli.md): the JSON contract (method, true, initial, learned,
 // final_loss, epochs, seconds), --epochs 0 with the gradient (exactly 0 for the hard loss at
 // 10× the truth, positive for the relaxed one), a short training run that moves μ towards
 // the truth, --data with a CSV file, --landscape writing the CSV (and plots with Cairo), and

@@ -1,4 +1,4 @@
-// `lcprelax learn polygon` (DESIGN §4). Expected behaviour:
+// `lcprelax learn polygon` (docs/cli.md). Expected behaviour:
 // - a short run (40 samples, 3 epochs) of every method exits 0 and prints one JSON object
 //   with method, true, initial, learned (the learned parameters, name → value), final_loss,
 //   epochs, seconds; the CSV log has a header and one row per epoch; training lowers the

@@ -6,8 +6,8 @@
 // starts) for every parameter (μ, mass, inertia, each vertex coordinate, ground height and
 // angle) to a relative error of 1e-5 (hard: exact Lemke), 1e-4 (relaxed, convex: the
 // interior point's tolerance enters), measured against max(|g|∞, 1e-3·|ℓ|).
-// The hard loss has a zero μ-gradient where the contacts stick (a known limitation, DESIGN
-// §1.5): |∂ℓ/∂μ| ≤ 1e-12 (roundoff), while the relaxed loss's is not zero there.
+// The hard loss has a zero μ-gradient where the contacts stick (a known limitation,
+// docs/formulations.md): |∂ℓ/∂μ| ≤ 1e-12 (roundoff), while the relaxed loss's is not zero there.
 #include <lcprelax/learn/polygon_losses.hpp>
 #include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/lcp/lemke.hpp>

@@ -1,4 +1,4 @@
-// Recovery of a polygon's parameters from noise-free generated data (DESIGN §1.5).
+// Recovery of a polygon's parameters from noise-free generated data (docs/formulations.md).
 // Expected behaviour: from initial values perturbed by 25% (μ, mass, inertia scaled by
 // 1 ± 0.25; each vertex coordinate moved by ±0.125·radius; perturb_polygon_model, seed 3),
 // training the relaxed loss with Adam recovers μ, mass and inertia to 5% relative error and

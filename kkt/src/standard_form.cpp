@@ -174,7 +174,7 @@ StandardForm build_standard_form(const QpProblem& p, int ruiz_iterations) {
       case EqSource::g_row:
         // Marked by an offset past A's slots, split into e_src/e_from_g below.
         for (Index t = gr.start[src]; t < gr.start[src + 1]; ++t)
-          te.push_back({k, gr.col[t], p.A.nonZeros() + gr.slot[t]});
+          te.push_back({k, gr.col[t], static_cast<Index>(p.A.nonZeros()) + gr.slot[t]});
         break;
       case EqSource::fixed_variable: te.push_back({k, src, -1}); break;
     }
