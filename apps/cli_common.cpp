@@ -45,7 +45,7 @@ void require_option(bool ok, const std::string& option, const std::string& requi
 
 learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, std::uint64_t seed,
                                           const std::string& optimizer, double learning_rate, double momentum,
-                                          bool json, const std::string& log_csv) {
+                                          bool json, const std::string& log_csv, const LearnStopOptions& stop) {
   learn::TrainSettings t;
   t.epochs = epochs;
   t.batch = batch;
@@ -56,10 +56,35 @@ learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, st
   t.optimizer.momentum = momentum;
   t.progress = !json && epochs > 0 && isatty(STDERR_FILENO);
   t.log_csv = log_csv;
+  t.rel_loss_tol = stop.rel_loss_tol;
+  t.grad_tol = stop.grad_tol;
+  t.patience = stop.patience;
   t.distributed = mpi::mpi_size() > 1;  // under mpiexec: samples sharded over the ranks
   const std::string bad = t.validation_error();
   if (!bad.empty()) throw InputError("training settings: " + bad);
   return t;
+}
+
+void add_learn_stop_options(CLI::App& command, LearnStopOptions& stop) {
+  command.add_option("--rel-loss-tol", stop.rel_loss_tol,
+                     "converged when |C_{k-1} - C_k| / max(|C_{k-1}|, |C_k|, 1) <= this (C: training loss) ...")
+      ->capture_default_str();
+  command.add_option("--grad-tol", stop.grad_tol, "... and the 2-norm of the mean gradient over the training set w.r.t. the free (log) parameters <= this ...")
+      ->capture_default_str();
+  command.add_option("--patience", stop.patience, "... for this many consecutive epochs (0: always run --epochs)")
+      ->capture_default_str();
+}
+
+void add_train_outcome(Json& j, const learn::TrainResult& result, int epochs_cap) {
+  if (epochs_cap > 0) {
+    j["epochs"] = static_cast<int>(result.history.size());
+    j["stop_reason"] = result.stop_reason;
+    j["converged"] = result.converged;
+  } else {
+    j["epochs"] = 0;
+    j["stop_reason"] = "epoch cap reached (0 epochs)";
+    j["converged"] = false;
+  }
 }
 
 }  // namespace lcprelax::cli

@@ -54,12 +54,28 @@ using LearnApplicationFactory = Command (*)(CLI::App& learn);
 bool register_learn_application(LearnApplicationFactory factory);
 Command add_learn_command(CLI::App& parent);
 
-/// Training settings common to the learn commands: epochs, mini-batch, threads, seed,
-/// optimizer (sgd|adam) with learning rate and momentum, progress on a terminal unless
-/// --json, the CSV log, and data-parallel mode under mpiexec. Throws InputError if invalid.
+/// The stopping options every learn command accepts: --epochs is the cap, --rel-loss-tol,
+/// --grad-tol and --patience the convergence test of learn::train (trainer.hpp).
+struct LearnStopOptions {
+  double rel_loss_tol = learn::TrainSettings{}.rel_loss_tol;
+  double grad_tol = learn::TrainSettings{}.grad_tol;
+  int patience = learn::TrainSettings{}.patience;
+};
+/// Adds --rel-loss-tol, --grad-tol and --patience to `command`.
+void add_learn_stop_options(CLI::App& command, LearnStopOptions& stop);
+
+/// Training settings common to the learn commands: epochs (the cap), mini-batch, threads,
+/// seed, optimizer (sgd|adam) with learning rate and momentum, the convergence test,
+/// progress on a terminal unless --json, the CSV log, and data-parallel mode under mpiexec.
+/// Throws InputError if invalid.
 learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, std::uint64_t seed,
                                           const std::string& optimizer, double learning_rate, double momentum,
-                                          bool json, const std::string& log_csv);
+                                          bool json, const std::string& log_csv, const LearnStopOptions& stop = {});
+
+/// Adds "epochs" (epochs actually run), "stop_reason" and "converged" of a training run to
+/// `j`. `epochs_cap` = 0 means no training ran: "epochs" 0, stop_reason "epoch cap reached
+/// (0 epochs)", converged false.
+void add_train_outcome(Json& j, const learn::TrainResult& result, int epochs_cap);
 
 /// Adds the `--json` flag every subcommand accepts.
 void add_json_flag(CLI::App& command, bool& json);

@@ -2,7 +2,8 @@
 // optionally the ground's height and angle) of a convex polygon tumbling on the ground from
 // generated transitions.
 //
-//   lcprelax learn polygon [--method hard|relaxed|convex] [--epochs E] [--batch B]
+//   lcprelax learn polygon [--method hard|relaxed|convex] [--epochs E] [--rel-loss-tol R]
+//       [--grad-tol G] [--patience P] [--batch B]
 //       [--threads T] [--samples S] [--seed K] [--noise σ] [--perturb F]
 //       [--learn mu,mass,inertia,vertices,ground] [--optimizer sgd|adam] [--lr α]
 //       [--lr-decay d] [--log FILE.csv] [--plot OUT.png|OUT.svg] [--json]
@@ -30,7 +31,8 @@
 // 1 ± F, vertex coordinates and ground height ± F·radius/2, angle ± 0.1·F rad (random signs,
 // seed K); parameters not learned keep their true values.
 // Output: JSON per docs/cli.md (method, true, initial, learned: name → value of the learned
-// parameters; final_loss = mean training loss at the learned θ; epochs; seconds) plus
+// parameters; final_loss = mean training loss at the learned θ; epochs run, stop_reason,
+// converged (--epochs is a cap, the convergence test of learn::train, trainer.hpp); seconds) plus
 // samples, validation_loss, relative_error (polygon_relative_error) and failed. --log: the
 // trainer's CSV per epoch (θ included). --plot OUT.ext: each learned parameter's relative
 // error against epoch (OUT.ext) and against wall time (OUT-time.ext), log y axis, via
@@ -56,6 +58,7 @@ namespace {
 struct LearnPolygonOptions {
   std::string method = "relaxed";
   int epochs = 300;
+  LearnStopOptions stop;
   int batch = 0;
   int threads = 0;
   int samples = 400;
@@ -127,7 +130,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
     require_option(ext == ".png" || ext == ".svg", "--plot", "must end in .png or .svg");
   }
   learn::TrainSettings t = learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr,
-                                                learn::OptimizerSettings{}.momentum, o.json, o.log);
+                                                learn::OptimizerSettings{}.momentum, o.json, o.log, o.stop);
   t.optimizer.decay = o.lr_decay;
 
   const learn::PolygonModel truth = learn::reference_polygon_model();
@@ -164,7 +167,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
   j["initial"] = values(initial, true);
   j["learned"] = values(theta, true);
   j["final_loss"] = number_or_null(final_eval.loss);
-  j["epochs"] = o.epochs;
+  add_train_outcome(j, result, o.epochs);
   j["seconds"] = seconds;
   j["samples"] = static_cast<int>(data.transitions.size());
   j["validation_loss"] = number_or_null(final_validation.loss);
@@ -177,7 +180,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
     print_json(j);
   } else {
     std::cout << "method " << j["method"].get<std::string>() << ", " << data.transitions.size() << " samples, "
-              << o.epochs << " epochs, " << seconds << " s, final loss " << final_eval.loss << "\n";
+              << j["epochs"].get<int>() << " epochs (" << j["stop_reason"].get<std::string>() << "), " << seconds << " s, final loss " << final_eval.loss << "\n";
     for (Index k = 0; k < theta.size(); ++k)
       if (theta[k].learn)
         std::cout << "  " << theta[k].name << ": true " << true_theta[k].value << ", initial " << initial[k].value
@@ -191,7 +194,8 @@ Command add_learn_polygon_command(CLI::App& learn) {
   auto o = std::make_shared<LearnPolygonOptions>();
   CLI::App* app = learn.add_subcommand("polygon", "learn mu, mass, inertia and geometry of a tumbling polygon");
   app->add_option("--method", o->method, "hard, relaxed or convex")->capture_default_str();
-  app->add_option("--epochs", o->epochs, "training epochs (0: evaluate only)")->capture_default_str();
+  app->add_option("--epochs", o->epochs, "most training epochs (0: evaluate only)")->capture_default_str();
+  add_learn_stop_options(*app, o->stop);
   app->add_option("--batch", o->batch, "mini-batch size (0: all training samples)")->capture_default_str();
   app->add_option("--threads", o->threads, "OpenMP threads (0: default)")->capture_default_str();
   app->add_option("--samples", o->samples, "generated transitions (contact steps)")->capture_default_str();

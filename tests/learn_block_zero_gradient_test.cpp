@@ -40,7 +40,9 @@ TEST(BlockZeroGradient, HardGradientIsExactlyZeroAndMuDoesNotMove) {
   t.threads = 1;
   t.optimizer.kind = OptimizerKind::sgd;
   t.optimizer.learning_rate = 0.5;
-  train(*hard, theta, f.all, {}, t);
+  t.patience = 0;  // all 30 epochs: the exactly-zero gradient would pass the convergence test
+  const TrainResult run = train(*hard, theta, f.all, {}, t);
+  EXPECT_EQ(run.history.size(), 30u);
   EXPECT_EQ(theta.value("mu"), 1.0);
 }
 

@@ -57,6 +57,7 @@ Outcome run(PolygonMethod method, int epochs, double lr) {
   o.final_loss = r.history.back().loss;
   std::printf("%s: %d samples, loss %.3e -> %.3e, %.2f s, %d failed\n", to_string(method),
               static_cast<int>(training.size()), o.initial_loss, o.final_loss, r.seconds, r.failed);
+  std::printf("  %zu of %d epochs: %s\n", r.history.size(), epochs, r.stop_reason.c_str());
   for (Index k = 0; k < theta.size(); ++k) {
     if (!theta[k].learn) continue;
     o.errors.push_back(polygon_relative_error(theta, true_theta, k));

@@ -3,6 +3,7 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,6 +33,9 @@ void check_indices(const std::vector<Index>& s, Index n, const char* what) {
 std::string TrainSettings::validation_error() const {
   if (epochs < 0) return "epochs must be ≥ 0";
   if (batch < 0) return "batch must be ≥ 0";
+  if (!(std::isfinite(rel_loss_tol) && rel_loss_tol >= 0.0)) return "rel_loss_tol must be finite and ≥ 0";
+  if (!(std::isfinite(grad_tol) && grad_tol >= 0.0)) return "grad_tol must be finite and ≥ 0";
+  if (patience < 0) return "patience must be ≥ 0";
   return optimizer.validation_error();
 }
 
@@ -65,7 +69,8 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   if (!settings.log_csv.empty() && writer) {
     log.open(settings.log_csv);
     if (!log) throw InputError("cannot write the training log '" + settings.log_csv + "'");
-    log << "epoch,loss,validation_loss,gradient_norm,seconds,samples_per_second,failed";
+    log << "epoch,loss,validation_loss,gradient_norm,seconds,samples_per_second,failed,full_loss,"
+           "full_gradient_norm,relative_loss_change";
     for (Index i = 0; i < theta.size(); ++i) log << ',' << theta[i].name;
     log << '\n';
     log.precision(17);
@@ -75,7 +80,12 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   long evaluated_total = 0;
-  for (int epoch = 1; epoch <= settings.epochs; ++epoch) {
+  const bool full_batch = batch >= order.size();
+  const bool test_on = settings.patience > 0;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double previous_full_loss = nan;
+  int streak = 0;
+  for (int epoch = 1; epoch <= settings.epochs && !out.converged; ++epoch) {
     if (settings.shuffle) shuffle(order, rng);
     EpochRecord rec;
     rec.epoch = epoch;
@@ -97,8 +107,30 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
       optimizer.step(xi, g);
       theta.set_free(xi);
     }
-    rec.loss = loss_count > 0 ? loss_sum / static_cast<double>(loss_count) : std::numeric_limits<double>::quiet_NaN();
-    rec.validation_loss = std::numeric_limits<double>::quiet_NaN();
+    rec.loss = loss_count > 0 ? loss_sum / static_cast<double>(loss_count) : nan;
+    // C_k and g_k over the whole training set (trainer.hpp): the epoch's own evaluation with
+    // full batch, one more at the epoch's end θ with mini-batches.
+    rec.full_loss = rec.full_gradient_norm = rec.relative_loss_change = nan;
+    bool complete = false;  // every training sample evaluated at θ_c
+    if (full_batch) {
+      complete = rec.failed == 0 && loss_count > 0;
+      if (loss_count > 0) rec.full_loss = rec.loss, rec.full_gradient_norm = rec.gradient_norm;
+    } else if (test_on) {
+      const BatchResult r = evaluate_mean(objective, theta, training, settings.threads, settings.distributed);
+      if (r.failed > 0 && out.first_failure.empty()) out.first_failure = r.first_failure;
+      complete = r.failed == 0 && r.evaluated > 0;
+      if (r.evaluated > 0) rec.full_loss = r.loss, rec.full_gradient_norm = theta.chain_gradient(r.gradient).norm();
+    }
+    if (complete && std::isfinite(previous_full_loss) && std::isfinite(rec.full_loss))
+      rec.relative_loss_change = std::abs(previous_full_loss - rec.full_loss) /
+                                 std::max({std::abs(previous_full_loss), std::abs(rec.full_loss), 1.0});
+    const bool holds = complete && rec.relative_loss_change <= settings.rel_loss_tol &&
+                       rec.full_gradient_norm <= settings.grad_tol;
+    streak = holds ? streak + 1 : 0;
+    rec.streak = streak;
+    previous_full_loss = complete ? rec.full_loss : nan;
+    if (test_on && streak >= settings.patience) out.converged = true;
+    rec.validation_loss = nan;
     if (!validation.empty()) rec.validation_loss = evaluate_mean(objective, theta, validation, settings.threads, settings.distributed).loss;
     rec.theta = theta.values();
     rec.seconds = elapsed();
@@ -113,13 +145,22 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
     }
     if (log) {
       log << epoch << ',' << rec.loss << ',' << rec.validation_loss << ',' << rec.gradient_norm << ',' << rec.seconds
-          << ',' << rec.samples_per_second << ',' << rec.failed;
+          << ',' << rec.samples_per_second << ',' << rec.failed << ',' << rec.full_loss << ','
+          << rec.full_gradient_norm << ',' << rec.relative_loss_change;
       for (Index i = 0; i < theta.size(); ++i) log << ',' << theta[i].value;
       log << '\n';
     }
     out.history.push_back(std::move(rec));
   }
   if (settings.progress && writer && settings.epochs > 0) std::fprintf(stderr, "\n");
+  char reason[160];
+  if (out.converged)
+    std::snprintf(reason, sizeof reason, "converged: relative loss change <= %g and gradient norm <= %g for %d epochs",
+                  settings.rel_loss_tol, settings.grad_tol, settings.patience);
+  else
+    std::snprintf(reason, sizeof reason, "epoch cap reached (%d epochs%s)", settings.epochs,
+                  test_on ? "" : ", convergence test off");
+  out.stop_reason = reason;
   out.seconds = elapsed();
   return out;
 }

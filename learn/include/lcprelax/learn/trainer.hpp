@@ -15,6 +15,34 @@
 //   reproducible and the same for every thread count.
 // - A sample that fails to evaluate is skipped and counted (EpochRecord::failed); a batch
 //   in which every sample fails leaves the parameters unchanged.
+//
+// Stopping: TrainSettings::epochs is a cap; a run ends earlier once it has converged.
+// After epoch k the trainer has C_k and g_k, the mean loss and the mean gradient ∂ℓ/∂ξ over
+// the WHOLE training set at one θ (EpochRecord::full_loss, full_gradient_norm = ‖g_k‖₂):
+// - full batch (batch = 0 or ≥ the training set): the epoch's own evaluation, at the θ the
+//   epoch started from (no extra cost);
+// - mini-batches: one extra evaluation of the whole training set at the epoch's end θ (one
+//   more pass per epoch; only while the test is on, patience > 0).
+// Epoch k satisfies the test when every training sample evaluated and
+//   Δ_k = |C_{k−1} − C_k| / max(|C_{k−1}|, |C_k|, 1) ≤ rel_loss_tol   (EpochRecord::relative_loss_change)
+//   ‖g_k‖₂ ≤ grad_tol,
+// the relative change being that of L-BFGS-B's `factr`/SciPy's `ftol` test (Zhu, Byrd, Lu &
+// Nocedal, ACM TOMS 23(4), 1997): relative for |C| ≥ 1, absolute below, so a loss that
+// decays geometrically towards 0 still passes it. The run stops, converged, after
+// `patience` consecutive such epochs (EpochRecord::streak); epoch 1 has no Δ and never
+// counts. Otherwise it stops at the cap with TrainResult::converged = false.
+// Why these numbers and not the epoch loss: with mini-batches (and Adam) the epoch loss
+// mixes several θ and the sampling of the batches, so it is noisy — a lucky epoch would
+// stop a run early and the noise floor of its change would keep it from ever stopping.
+// C_k and g_k are deterministic functions of θ, so the only noise left is the movement of θ
+// itself: a constant learning rate on mini-batches keeps θ jittering around the minimum and
+// ‖g‖ at a floor set by that jitter, which is honestly reported as "epoch cap reached"
+// (use a schedule, OptimizerSettings::decay, a larger batch or a looser grad_tol). The
+// patience window keeps an oscillating optimizer (Adam crossing the minimum, where the loss
+// momentarily stops changing) from stopping on one epoch. The numbers come from
+// evaluate_batch / evaluate_batch_distributed (sums in a fixed order, identical for every
+// thread count and on every rank), so the decision is identical on every rank and for
+// every thread count.
 #include <lcprelax/learn/batch.hpp>
 #include <lcprelax/learn/optimizer.hpp>
 #include <lcprelax/learn/parameters.hpp>
@@ -55,6 +83,15 @@ struct TrainSettings {
   /// identical on every rank and equal those of one process. Progress and the CSV log
   /// are written by rank 0 only. Without MPI (or with one rank) it changes nothing.
   bool distributed = false;
+  /// Convergence test (header comment): stop after `patience` consecutive epochs with the
+  /// relative loss change Δ_k ≤ rel_loss_tol and the full-training-set gradient norm
+  /// ‖∂C/∂ξ‖₂ ≤ grad_tol. Defaults measured on `lcprelax learn block --method relaxed
+  /// --init-mu 1` (full batch, Adam α = 0.05, loss ≈ 5e-5 at the minimum): Δ_k falls below
+  /// 1e-9 near epoch 200 (μ = 0.10025), ‖g‖ below 1e-7 from epoch 274, and the run stops
+  /// after 278 epochs at μ = 0.100146, the minimizer itself to 5e-7.
+  double rel_loss_tol = 1e-9;     ///< finite, ≥ 0
+  double grad_tol = 1e-7;         ///< finite, ≥ 0
+  int patience = 5;               ///< ≥ 0; 0 switches the test off (exactly `epochs` epochs)
   std::string validation_error() const;  ///< empty if valid, else a message naming the first bad field
 };
 
@@ -67,6 +104,12 @@ struct EpochRecord {
   double seconds = 0.0;           ///< wall time since the start of training
   double samples_per_second = 0.0;
   int failed = 0;                 ///< failed sample evaluations in the epoch
+  /// C_k: mean loss over the whole training set (header comment; NaN when mini-batched
+  /// with patience 0 or when no sample evaluated).
+  double full_loss = 0.0;
+  double full_gradient_norm = 0.0;     ///< ‖g_k‖₂, ‖mean ∂ℓ/∂ξ‖₂ over the training set (NaN as full_loss)
+  double relative_loss_change = 0.0;   ///< Δ_k (NaN in epoch 1 or without C_{k−1}, C_k)
+  int streak = 0;                      ///< consecutive epochs up to this one that satisfy the test
 };
 
 struct TrainResult {
@@ -74,6 +117,11 @@ struct TrainResult {
   double seconds = 0.0;
   int failed = 0;                 ///< over all epochs
   std::string first_failure;
+  bool converged = false;         ///< the convergence test held for `patience` epochs
+  /// Why the run ended: "converged: relative loss change <= 1e-09 and gradient norm <= 1e-07
+  /// for 5 epochs", "epoch cap reached (N epochs)" or, with patience = 0, "epoch cap reached
+  /// (N epochs, convergence test off)".
+  std::string stop_reason;
 };
 
 /// Mean loss and mean gradient ∂ℓ/∂θ over `samples` at the current θ (no update);
