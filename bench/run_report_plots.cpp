@@ -29,6 +29,7 @@
 #include "csv_table.hpp"
 #include "pile_timing.hpp"
 
+#include <lcprelax/kkt/qp_result.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
 
 #include <CLI/CLI.hpp>
@@ -52,6 +53,16 @@ using lcprelax::bench::read_csv;
 
 double num(const Row& r, const std::string& key) { return lcprelax::bench::csv_number(r, key); }
 std::string text(const Row& r, const std::string& key) { return lcprelax::bench::csv_text(r, key); }
+
+// Whether a QP status written as to_string(QpStatus) in a CSV carries a solution.
+bool has_solution_text(const std::string& status) {
+  using lcprelax::QpStatus;
+  for (QpStatus s : {QpStatus::unsolved, QpStatus::solved, QpStatus::solved_inaccurate, QpStatus::primal_infeasible,
+                     QpStatus::dual_infeasible, QpStatus::max_iterations, QpStatus::time_limit,
+                     QpStatus::numerical_error})
+    if (status == lcprelax::to_string(s)) return lcprelax::has_solution(s);
+  return false;
+}
 
 // Appends ", slope S" (least-squares slope of log y against log x over the series' points
 // with x ≥ from) to the legend entry.
@@ -170,7 +181,7 @@ void qp_scaling_plot(const std::vector<Row>& rows, const std::string& out) {
   lcprelax::LineSeries fwd{"forward (setup + solve)", {}, {}, true, true};
   lcprelax::LineSeries bwd{"backward (adjoint)", {}, {}, true, true, true};
   for (const Row& r : rows) {
-    if (text(r, "status") != "solved" && text(r, "status") != "solved_inaccurate") continue;
+    if (!has_solution_text(text(r, "status"))) continue;
     fwd.x.push_back(num(r, "n")), fwd.y.push_back(num(r, "forward_cpu_s"));
     bwd.x.push_back(num(r, "n")), bwd.y.push_back(num(r, "backward_cpu_s"));
   }
@@ -245,7 +256,7 @@ void throughput_plot(const std::vector<Row>& rows, const std::string& problem, c
 void kkt_plot(const std::vector<Row>& rows, const std::string& out) {
   std::map<std::string, std::map<double, double>> points;  // series → size → seconds
   for (const Row& r : rows) {
-    if (text(r, "status") != "solved" && text(r, "status") != "solved_inaccurate") continue;
+    if (!has_solution_text(text(r, "status"))) continue;
     const std::string key = text(r, "backend") + ", " + text(r, "ranks") + (text(r, "ranks") == "1" ? " rank" : " ranks");
     points[key][num(r, "n") + num(r, "rows")] = num(r, "total_s");
   }
