@@ -9,10 +9,12 @@
 //   criteria met on the whole training set at the stop (not on the mini-batch epoch loss),
 //   x within 1e-5 of the minimum; the stop epoch and θ are identical for 1 and 2 threads;
 // - invalid tolerances are InputErrors.
-#include <lcprelax/learn/trainer.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/learn/trainer.hpp>
 
 #include <gtest/gtest.h>
+
+#include "learn_train_support.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -20,24 +22,9 @@
 namespace lcprelax::learn {
 namespace {
 
-class Quadratic : public Objective {
- public:
-  Index num_samples() const override { return 40; }
-  SampleResult evaluate(Index i, const ParameterSet& theta, int) override {
-    const double c = 1.0 + 0.01 * static_cast<double>(i), x = theta[0].value;
-    SampleResult r;
-    r.loss = (x - c) * (x - c);
-    r.gradient = Vector::Constant(1, 2.0 * (x - c));
-    return r;
-  }
-};
-constexpr double kMinimum = 1.195;  // mean of 1 + 0.01 i, i = 0..39
-
-std::vector<Index> all_samples() {
-  std::vector<Index> all;
-  for (Index i = 0; i < 40; ++i) all.push_back(i);
-  return all;
-}
+using test::all_samples;
+using test::Quadratic;
+constexpr double kMinimum = test::kQuadraticMinimum;
 
 void expect_stopped_converged(const TrainResult& r, const TrainSettings& t) {
   ASSERT_TRUE(r.converged) << r.stop_reason;

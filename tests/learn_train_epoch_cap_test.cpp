@@ -9,26 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include "learn_train_support.hpp"
+
 namespace lcprelax::learn {
 namespace {
 
-class Quadratic : public Objective {
- public:
-  Index num_samples() const override { return 40; }
-  SampleResult evaluate(Index i, const ParameterSet& theta, int) override {
-    const double c = 1.0 + 0.01 * static_cast<double>(i), x = theta[0].value;
-    SampleResult r;
-    r.loss = (x - c) * (x - c);
-    r.gradient = Vector::Constant(1, 2.0 * (x - c));
-    return r;
-  }
-};
-
-std::vector<Index> all_samples() {
-  std::vector<Index> all;
-  for (Index i = 0; i < 40; ++i) all.push_back(i);
-  return all;
-}
+using test::all_samples;
+using test::Quadratic;
 
 void expect_cap(const TrainResult& r, const TrainSettings& t) {
   EXPECT_FALSE(r.converged);
