@@ -52,6 +52,7 @@ struct Run {
 learn::TrainSettings train_settings(int epochs, int threads, double learning_rate, double decay = 0.0) {
   learn::TrainSettings t;
   t.epochs = epochs;
+  t.patience = 0;  // every method runs the same epochs: error against time over the whole run
   t.threads = threads;
   t.seed = 1;
   t.optimizer.kind = learn::OptimizerKind::adam;
