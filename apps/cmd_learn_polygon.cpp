@@ -4,14 +4,14 @@
 //
 //   lcprelax learn polygon [--method hard|relaxed|convex] [--epochs E] [--rel-loss-tol R]
 //       [--grad-tol G] [--patience P] [--batch B]
-//       [--threads T] [--samples S] [--seed K] [--noise σ] [--perturb F]
+//       [--threads T] [--samples S] [--seed K] [--noise σ] [--data-model lcp|convex] [--perturb F]
 //       [--learn mu,mass,inertia,vertices,ground] [--optimizer sgd|adam] [--lr α]
 //       [--lr-decay d] [--log FILE.csv] [--plot OUT.png|OUT.svg] [--json]
 //
 // Ground truth: the quadrilateral with vertices (−0.30, −0.22), (0.34, −0.18), (0.26, 0.24),
 // (−0.22, 0.20) m recentred on its centroid, μ = 0.4, mass 1.5 kg, inertia 0.06 kg·m², on the
-// floor y ≥ 0 (h = 0, α = 0). Data: polygon_dataset.hpp (LCP model, random throws and
-// applied forces, contact steps only), trajectories of 60 steps at Δt = 0.01 s added until S
+// floor y ≥ 0 (h = 0, α = 0). Data: polygon_dataset.hpp (the --data-model contact model,
+// LCP by default; random throws and applied forces, contact steps only), trajectories of 60 steps at Δt = 0.01 s added until S
 // transitions exist (the first S are used), noise σ on every recorded component; 20% of the
 // samples (split_samples, seed K) are held out for validation.
 // Defaults (400 samples, 300 epochs, Adam α = 0.02 with the schedule α/(1 + 0.003k)),
@@ -44,6 +44,7 @@
 
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_objective.hpp>
+#include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
 #include <lcprelax/core/errors.hpp>
 
@@ -64,6 +65,7 @@ struct LearnPolygonOptions {
   int samples = 400;
   std::uint64_t seed = 1;
   double noise = 0.0;
+  std::string data_model = "lcp";
   double perturb = 0.25;
   std::string learn = "mu,mass,inertia,vertices";
   std::string optimizer = "adam";
@@ -137,6 +139,7 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
   learn::PolygonDataSettings ds;
   ds.seed = o.seed;
   ds.noise = o.noise;
+  ds.model = parse_contact_model(o.data_model);
   ds.trajectories = std::max(1, o.samples / 30);
   learn::PolygonDataset data = learn::generate_polygon_dataset(truth, ds);
   while (static_cast<int>(data.transitions.size()) < o.samples) {
@@ -201,6 +204,9 @@ Command add_learn_polygon_command(CLI::App& learn) {
   app->add_option("--samples", o->samples, "generated transitions (contact steps)")->capture_default_str();
   app->add_option("--seed", o->seed, "seed of data, initial values and shuffle")->capture_default_str();
   app->add_option("--noise", o->noise, "Gaussian noise sigma on q and v (SI units)")->capture_default_str();
+  app->add_option("--data-model", o->data_model, "contact model that generates the data: lcp or convex")
+      ->check(CLI::IsMember({"lcp", "convex"}))
+      ->capture_default_str();
   app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
   app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground")->capture_default_str();
   app->add_option("--optimizer", o->optimizer, "sgd or adam")->capture_default_str();
