@@ -9,6 +9,7 @@
 
 #include <exception>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,8 @@ void solve_one(std::optional<QpSolver>& ws, const QpProblem*& last, const QpProb
 }
 
 // Runs body(k, workspace, last) for k < count; an exception thrown for problem k is kept
-// and the one of the lowest k rethrown after the loop, with its problem index.
+// and the one of the lowest k rethrown after the loop with its problem index (InputError
+// stays InputError, anything else becomes std::runtime_error).
 template <class Body>
 void parallel_for(int count, int threads, Body body) {
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(count));
@@ -72,10 +74,13 @@ void parallel_for(int count, int threads, Body body) {
 #endif
   for (int k = 0; k < count; ++k) {
     if (!errors[static_cast<std::size_t>(k)]) continue;
+    const std::string where = "problems[" + std::to_string(k) + "]: ";
     try {
       std::rethrow_exception(errors[static_cast<std::size_t>(k)]);
-    } catch (const std::exception& e) {
-      throw InputError("problems[" + std::to_string(k) + "]: " + e.what());
+    } catch (const InputError& e) {
+      throw InputError(where + e.what());
+    } catch (const std::exception& e) {  // not bad input (e.g. a failed analysis): keep it apart
+      throw std::runtime_error(where + e.what());
     }
   }
 }

@@ -3,7 +3,9 @@
 // solver workspace; problems are processed in index order per thread and results stored
 // by index, so the outputs do not depend on the number of threads. Every problem and the
 // settings are validated before any solve: invalid data throw InputError naming the problem
-// ("problems[3]: ..."), as does an exception raised while problem k is solved.
+// ("problems[3]: ..."). An exception raised while problem k is solved is rethrown after the
+// batch with the same prefix (the lowest such k; InputError stays InputError, any other
+// becomes std::runtime_error).
 // Threads ≤ 0 means OpenMP's default; without OpenMP the batch runs serially.
 #include <lcprelax/kkt/qp_gradient.hpp>
 #include <lcprelax/kkt/qp_problem.hpp>
