@@ -54,6 +54,7 @@ std::vector<Contact> find_contacts(const World& world, const CollisionSettings& 
       c.normal = m.normal;
       c.gap = m.points[k].gap;
       c.mu = world.friction.mu(world.bodies[a].material, material_b);
+      c.feature = m.points[k].feature;
       contacts.push_back(c);
     }
   };

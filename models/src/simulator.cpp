@@ -135,19 +135,15 @@ void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, 
   ++stats.projected_islands;
 }
 
-StepStats Simulator::step(const std::vector<Vec3>& applied) {
-  World& world = world_;
-  const double dt = settings_.dt;
-  if (!applied.empty() && applied.size() != world.bodies.size())
-    throw InputError("Simulator::step: applied forces need one (fx, fy, torque) per body");
-  StepStats stats;
-  auto t0 = std::chrono::steady_clock::now();
+double speculative_contact_margin(const World& world, const SimulatorSettings& settings,
+                                  const std::vector<Vec3>& applied) {
   // Speculative margin: contacts enter before they can close during this step, so fast
   // bodies do not pass the margin in one step and penetrate (the gap term φ/Δt then lets
   // them close exactly). Each body can move |v| + |ω|·r per unit time, with v and ω the
   // larger of the current and the free velocity v* = v + Δt·M⁻¹f (gravity and applied
   // forces act within the step: a body at rest falls g·Δt² in its first step, 9.8 cm at
   // Δt = 0.1 s, measured in tests/dynamics_penetration_test.cpp); two bodies twice.
+  const double dt = settings.dt;
   double fastest = 0.0;
   for (std::size_t i = 0; i < world.bodies.size(); ++i) {
     const RigidBody& b = world.bodies[i];
@@ -159,11 +155,33 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     const Vec3 free = b.velocity + dt * Vec3(f(0) / b.mass, f(1) / b.mass, f(2) / b.inertia);
     for (const Vec3& v : {b.velocity, free}) fastest = std::max(fastest, v.head<2>().norm() + std::abs(v(2)) * r);
   }
-  const double margin = settings_.margin + 2.0 * fastest * dt;
-  contacts_ = find_contacts(world, CollisionSettings{margin});
+  return settings.margin + 2.0 * fastest * dt;
+}
+
+StepContacts find_step_contacts(const World& world, const SimulatorSettings& settings,
+                                const std::vector<Vec3>& applied) {
+  if (!applied.empty() && applied.size() != world.bodies.size())
+    throw InputError("applied forces need one (fx, fy, torque) per body (" + std::to_string(applied.size()) +
+                     " given, " + std::to_string(world.bodies.size()) + " bodies)");
+  StepContacts out;
+  out.margin = speculative_contact_margin(world, settings, applied);
+  out.contacts = find_contacts(world, CollisionSettings{out.margin});
+  out.islands = find_islands(world, out.contacts);
+  return out;
+}
+
+StepStats Simulator::step(const std::vector<Vec3>& applied) {
+  World& world = world_;
+  const double dt = settings_.dt;
+  if (!applied.empty() && applied.size() != world.bodies.size())
+    throw InputError("Simulator::step: applied forces need one (fx, fy, torque) per body");
+  StepStats stats;
+  auto t0 = std::chrono::steady_clock::now();
+  StepContacts found = find_step_contacts(world, settings_, applied);
+  contacts_ = std::move(found.contacts);
   stats.contacts = static_cast<int>(contacts_.size());
   for (const Contact& c : contacts_) stats.max_penetration = std::max(stats.max_penetration, -c.gap);
-  const std::vector<Island> islands = find_islands(world, contacts_);
+  const std::vector<Island>& islands = found.islands;
   const std::vector<ContactKey> keys = contact_keys();
   stats.islands = static_cast<int>(islands.size());
   stats.collision_seconds = seconds_since(t0);

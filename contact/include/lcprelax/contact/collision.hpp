@@ -8,7 +8,9 @@
 // normal: unit, from b to a; gap φ (m): signed distance along the normal, negative when
 // overlapping; point: world, midway between the surfaces; mu from
 // world.friction.mu(material_a, material_b). Contacts with φ ≤ margin are reported (near
-// contacts enter before they touch); at most two per pair.
+// contacts enter before they touch); at most two per pair. feature: the features of the two
+// shapes that produced the point (narrow_phase.hpp), from which refresh_contacts
+// (contact_features.hpp) recomputes point, normal and gap at other shapes or poses.
 //
 // Order: sorted by (body_a, body_b, static_kind, static_index, point.x, point.y); the
 // result depends only on the world, not on memory layout or timing.

@@ -23,6 +23,9 @@
 // from their exact closest features (vertex–edge distance, so shapes farther apart than
 // the margin never give contacts); overlapping shapes get the deepest vertex of the
 // incident shape. Two points closer than 1e-9·min(radius) are merged into the deeper one.
+// Each point records its features (Contact::Feature: reference face, incident vertex or
+// clipped incident edge, deepest vertex, closest vertex–edge pair, half-plane vertex), from
+// which contact/contact_features.hpp recomputes it.
 //
 // Polygon–half-plane: the vertices with φ_i = n·v_i − offset ≤ margin; at most the two
 // deepest (a flat-lying face gives its two end vertices); normal = the plane's normal.
@@ -39,6 +42,7 @@ constexpr double kReferenceFaceTolerance = 1e-4;
 struct ManifoldPoint {
   Vec2 point = Vec2::Zero();  ///< world, midway between the surfaces (m)
   double gap = 0.0;           ///< φ (m), negative when overlapping
+  Contact::Feature feature;   ///< the features of a and b that give the point (world.hpp)
 };
 
 struct Manifold {

@@ -21,6 +21,7 @@
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/world/world.hpp>
 
 #include <map>
@@ -87,6 +88,25 @@ struct StepStats {
   int failed_projections = 0;    ///< islands whose projection failed (positions left as they were)
   double collision_seconds = 0.0, solve_seconds = 0.0;
 };
+
+/// The contacts a step poses, and their islands: what Simulator::step solves, shared with
+/// learning (learn/scene_objective.hpp) so that a loss sees the simulator's own problems.
+struct StepContacts {
+  double margin = 0.0;            ///< settings.margin + the speculative part (m)
+  std::vector<Contact> contacts;  ///< find_contacts at `margin` (collision.hpp order)
+  std::vector<Island> islands;    ///< find_islands (contact_system.hpp)
+};
+
+/// The speculative contact margin of a step (m): settings.margin + 2Δt·max over the dynamic
+/// bodies and over {v, v* = v + Δt M⁻¹f} of (|v_xy| + |ω|·r), r the body's largest vertex
+/// radius, f gravity plus `applied` (one (fx, fy, τ) per body, or empty).
+double speculative_contact_margin(const World& world, const SimulatorSettings& settings,
+                                  const std::vector<Vec3>& applied = {});
+
+/// Contacts and islands of the step that Simulator::step would take from `world`. Throws
+/// InputError when `applied` is neither empty nor one entry per body.
+StepContacts find_step_contacts(const World& world, const SimulatorSettings& settings,
+                                const std::vector<Vec3>& applied = {});
 
 class Simulator {
  public:

@@ -76,8 +76,33 @@ struct World {
 /// One contact point between a dynamic body a and a body b (dynamic, static, or a static
 /// shape). Which static shape b is: body_b ≥ 0 is a body index (possibly a static body);
 /// body_b = −1 with static_kind/static_index naming the half-plane or segment.
+///
+/// `feature` records which geometric features of the two shapes produced the point, so that
+/// (point, normal, gap) can be recomputed from the shapes' vertices with the features held
+/// fixed (contact/contact_features.hpp). Vertex and edge indices refer to the world-frame
+/// vertex loops of shape a (the body's polygon) and shape b (a body's polygon, or a
+/// segment's end points a = 0, b = 1 with edges 0: a→b and 1: b→a); edge e runs from
+/// vertex e to vertex e + 1 (mod count), its outward normal n_e = (e_y, −e_x)/|e|.
 struct Contact {
   enum class StaticKind { none, half_plane, segment };
+  struct Feature {
+    enum class Kind {
+      none,             ///< not recorded (a contact made by hand): cannot be recomputed
+      incident_vertex,  ///< vertex `vertex` of the incident shape, inside the reference slab
+      clipped_edge,     ///< incident edge (vertex, vertex+1) ∩ the side line of the reference
+                        ///< face through its vertex edge + side (t·p = t·r, t along the face)
+      deepest_vertex,   ///< vertex `vertex` of the incident shape, below reference face `edge`
+      closest,          ///< separated shapes: vertex `vertex` of the non-face shape and its
+                        ///< closest point on edge `edge` of the face shape (side −1: interior,
+                        ///< 0 / 1: the edge's start / end vertex); normal along their difference
+      plane_vertex      ///< half-plane: vertex `vertex` of shape a
+    };
+    Kind kind = Kind::none;
+    bool face_on_a = false;  ///< the edge `edge` is shape a's (else b's); the vertex is the other's
+    int edge = -1;           ///< reference face, or the face shape's edge (closest)
+    int vertex = -1;         ///< vertex / incident edge start on the other shape (plane: on a)
+    int side = -1;           ///< clipped_edge: 0 or 1; closest: −1, 0 or 1; else −1
+  };
   int body_a = -1;
   int body_b = -1;
   StaticKind static_kind = StaticKind::none;
@@ -86,6 +111,7 @@ struct Contact {
   Vec2 normal{0.0, 1.0};  ///< unit, from b to a
   double gap = 0.0;       ///< φ (m), negative when overlapping
   double mu = 0.0;        ///< friction coefficient of the pair
+  Feature feature;        ///< what produced the point (filled by find_contacts)
 };
 
 }  // namespace lcprelax
