@@ -13,9 +13,11 @@
 namespace lcprelax {
 namespace {
 
-constexpr std::array<const char*, 9> kColumns = {"step", "time", "body", "x",    "y",
-                                                 "theta", "vx",  "vy",   "omega"};
-enum Column { kStep, kTime, kBody, kX, kY, kTheta, kVx, kVy, kOmega };
+// The nine required columns, then the optional force columns (all three or none).
+constexpr std::array<const char*, 12> kColumns = {"step", "time", "body", "x",  "y",  "theta",
+                                                  "vx",   "vy",   "omega", "fx", "fy", "torque"};
+constexpr std::size_t kRequiredColumns = 9;
+enum Column { kStep, kTime, kBody, kX, kY, kTheta, kVx, kVy, kOmega, kFx, kFy, kTorque };
 
 void append(std::string& out, double v) {
   char buf[32];
@@ -36,40 +38,63 @@ std::vector<std::string_view> split(std::string_view line) {
 
 }  // namespace
 
-TrajectoryWriter::TrajectoryWriter(std::ostream& out) : out_(&out) {
-  for (std::size_t c = 0; c < kColumns.size(); ++c) *out_ << (c ? "," : "") << kColumns[c];
-  *out_ << '\n';
+TrajectoryWriter::TrajectoryWriter(std::ostream& out, bool applied_columns)
+    : out_(&out), applied_columns_(applied_columns) {
+  header();
 }
 
-TrajectoryWriter::TrajectoryWriter(const std::string& path)
-    : file_(std::make_unique<std::ofstream>(path, std::ios::binary)) {
+TrajectoryWriter::TrajectoryWriter(const std::string& path, bool applied_columns)
+    : file_(std::make_unique<std::ofstream>(path, std::ios::binary)), applied_columns_(applied_columns) {
   if (!*file_) throw std::runtime_error(path + ": cannot open trajectory file for writing");
   out_ = file_.get();
-  for (std::size_t c = 0; c < kColumns.size(); ++c) *out_ << (c ? "," : "") << kColumns[c];
+  header();
+}
+
+void TrajectoryWriter::header() {
+  const std::size_t n = applied_columns_ ? kColumns.size() : kRequiredColumns;
+  for (std::size_t c = 0; c < n; ++c) *out_ << (c ? "," : "") << kColumns[c];
   *out_ << '\n';
 }
 
-void TrajectoryWriter::row(int step, double time, int body, const Vec3& pose, const Vec3& velocity) {
+void TrajectoryWriter::check_applied(const std::vector<Vec3>& applied, std::size_t bodies) const {
+  if (applied.empty()) return;
+  if (!applied_columns_)
+    throw std::invalid_argument("TrajectoryWriter::write: applied forces given, but the writer has no force columns");
+  if (applied.size() != bodies)
+    throw std::invalid_argument("TrajectoryWriter::write: applied has " + std::to_string(applied.size()) +
+                                " entries for " + std::to_string(bodies) + " bodies");
+}
+
+void TrajectoryWriter::row(int step, double time, int body, const Vec3& pose, const Vec3& velocity,
+                           const Vec3& applied) {
   buffer_ = std::to_string(step);
   buffer_ += ',';
   append(buffer_, time);
   buffer_ += ',' + std::to_string(body);
   for (int k = 0; k < 3; ++k) append(buffer_ += ',', pose[k]);
   for (int k = 0; k < 3; ++k) append(buffer_ += ',', velocity[k]);
+  if (applied_columns_)
+    for (int k = 0; k < 3; ++k) append(buffer_ += ',', applied[k]);
   buffer_ += '\n';
   out_->write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
 }
 
-void TrajectoryWriter::write(int step, double time, const World& world) {
+void TrajectoryWriter::write(int step, double time, const World& world) { write(step, time, world, {}); }
+
+void TrajectoryWriter::write(int step, double time, const World& world, const std::vector<Vec3>& applied) {
+  check_applied(applied, world.bodies.size());
   for (std::size_t i = 0; i < world.bodies.size(); ++i)
-    row(step, time, static_cast<int>(i), world.bodies[i].pose, world.bodies[i].velocity);
+    row(step, time, static_cast<int>(i), world.bodies[i].pose, world.bodies[i].velocity,
+        applied.empty() ? Vec3::Zero() : applied[i]);
 }
 
 void TrajectoryWriter::write(const TrajectoryFrame& frame) {
   if (frame.pose.size() != frame.velocity.size())
     throw std::invalid_argument("TrajectoryWriter::write: pose and velocity sizes differ");
+  check_applied(frame.applied, frame.pose.size());
   for (std::size_t i = 0; i < frame.pose.size(); ++i)
-    row(frame.step, frame.time, static_cast<int>(i), frame.pose[i], frame.velocity[i]);
+    row(frame.step, frame.time, static_cast<int>(i), frame.pose[i], frame.velocity[i],
+        frame.applied.empty() ? Vec3::Zero() : frame.applied[i]);
 }
 
 void TrajectoryWriter::flush() {
@@ -92,7 +117,7 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
     return false;
   };
 
-  // Header: each of the nine names exactly once, in any order.
+  // Header: each of the nine names exactly once, in any order, and fx, fy, torque all or none.
   std::array<int, kColumns.size()> column_of;  // Column -> cell index
   column_of.fill(-1);
   if (!next_line()) {
@@ -107,8 +132,13 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
     if (column_of[c] >= 0) fail("column '" + std::string(names[i]) + "' appears twice");
     column_of[c] = static_cast<int>(i);
   }
-  for (std::size_t c = 0; c < kColumns.size(); ++c)
+  for (std::size_t c = 0; c < kRequiredColumns; ++c)
     if (column_of[c] < 0) fail(std::string("missing column '") + kColumns[c] + "'");
+  const bool has_applied = column_of[kFx] >= 0 || column_of[kFy] >= 0 || column_of[kTorque] >= 0;
+  for (std::size_t c = kRequiredColumns; c < kColumns.size() && has_applied; ++c)
+    if (column_of[c] < 0)
+      fail(std::string("missing column '") + kColumns[c] + "' (fx, fy, torque go together)");
+  const std::size_t columns = has_applied ? kColumns.size() : kRequiredColumns;
 
   std::vector<TrajectoryFrame> frames;
   std::size_t frame_last_line = 0;  // last line of the current frame
@@ -123,9 +153,9 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
   std::array<double, kColumns.size()> v{};
   while (next_line()) {
     const std::vector<std::string_view> cells = split(line);
-    if (cells.size() != kColumns.size())
-      fail("expected " + std::to_string(kColumns.size()) + " cells, got " + std::to_string(cells.size()));
-    for (std::size_t c = 0; c < kColumns.size(); ++c) {
+    if (cells.size() != columns)
+      fail("expected " + std::to_string(columns) + " cells, got " + std::to_string(cells.size()));
+    for (std::size_t c = 0; c < columns; ++c) {
       std::string_view cell = cells[static_cast<std::size_t>(column_of[c])];
       while (!cell.empty() && (cell.front() == ' ' || cell.front() == '\t')) cell.remove_prefix(1);
       while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\t')) cell.remove_suffix(1);
@@ -151,6 +181,7 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
       frames.emplace_back();
       frames.back().step = step;
       frames.back().time = v[kTime];
+      frames.back().line = static_cast<int>(line_no);
     }
     TrajectoryFrame& f = frames.back();
     if (body != static_cast<int>(f.pose.size()))
@@ -163,6 +194,7 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
       fail("step " + std::to_string(step) + ": time differs from the step's first row");
     f.pose.emplace_back(v[kX], v[kY], v[kTheta]);
     f.velocity.emplace_back(v[kVx], v[kVy], v[kOmega]);
+    if (has_applied) f.applied.emplace_back(v[kFx], v[kFy], v[kTorque]);
     frame_last_line = line_no;
   }
   if (in.bad()) fail("read error");

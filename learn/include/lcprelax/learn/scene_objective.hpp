@@ -1,0 +1,79 @@
+#pragma once
+// Learning on a multi-body scene as a learn::Objective (trainer.hpp): one sample per
+// transition of a SceneDataset, ℓᵢ(θ) and ∂ℓᵢ/∂θ by one of the three step losses.
+//
+// evaluate(i, θ, thread):
+//   1. the thread's World carries θ (SceneParameterMap::apply, done in prepare()); the
+//      transition's poses and velocities are set;
+//   2. the step's contacts and islands exactly as the Simulator poses them
+//      (find_step_contacts: speculative margin, collision, islands; models/simulator.hpp) and
+//      each island's ContactSystem (assemble_contact_system, the Simulator's own assembly);
+//   3. per island the method's loss against the island bodies' observed next velocities
+//      (step_loss_hard.hpp, step_loss_relaxed.hpp, step_loss_convex.hpp), pulled back to the
+//      world's primitives (accumulate_world_gradient, models/contact_system_gradient.hpp),
+//      then to θ (SceneParameterMap::gradient): sparse throughout, O(contacts + bodies);
+//   4. dynamic bodies in no island fly freely, v⁺ = v* = v + Δt(g + u_xy/m, u_τ/I); they add
+//      ‖v* − v̄‖² ((m/s)², weight 1 for every method), whose gradient reaches mass and
+//      inertia through the applied forces (a pushed body in flight identifies its mass).
+// ℓᵢ is the sum over islands and free bodies. A transition in which any island's solve has
+// no solution (ContactStatus failed) fails as a whole (SampleResult::ok = false, message
+// naming the island): a failed island is never averaged in. Counts of islands and failures
+// are kept (stats()).
+// Contacts are found at the CURRENT θ (a learned vertex or ground moves them), then held
+// fixed while differentiating (a contact appearing or disappearing is a kink).
+#include <lcprelax/learn/scene_dataset.hpp>
+#include <lcprelax/learn/scene_params.hpp>
+#include <lcprelax/learn/step_loss.hpp>
+#include <lcprelax/learn/step_loss_convex.hpp>
+#include <lcprelax/learn/step_loss_hard.hpp>
+#include <lcprelax/learn/step_loss_relaxed.hpp>
+#include <lcprelax/learn/trainer.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lcprelax::learn {
+
+struct SceneLossSettings {
+  LossMethod method = LossMethod::relaxed;
+  HardStepLossSettings hard;
+  RelaxedStepLossSettings relaxed;
+  ConvexStepLossSettings convex;
+  std::string validation_error() const;  ///< empty if valid, else names the field
+};
+
+/// Totals over all evaluations since construction (or reset_stats()).
+struct SceneObjectiveStats {
+  long transitions = 0;
+  long islands = 0;
+  long contacts = 0;
+  long inaccurate_islands = 0;  ///< ContactStatus::solved_inaccurate (kept, usable)
+  long failed_islands = 0;      ///< no solution: their transition failed
+  double seconds_collision = 0.0, seconds_loss = 0.0, seconds_pullback = 0.0;
+};
+
+class SceneObjective : public Objective {
+ public:
+  /// Keeps references to `data` and `map` (both must outlive the objective). Throws
+  /// InputError for invalid settings, an empty or invalid dataset, or a map of another scene.
+  SceneObjective(const SceneDataset& data, const SceneParameterMap& map, SceneLossSettings settings);
+  ~SceneObjective() override;
+
+  Index num_samples() const override;
+  void prepare(const ParameterSet& theta, int threads) override;
+  SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override;
+
+  SceneObjectiveStats stats() const;
+  void reset_stats();
+  const SceneLossSettings& settings() const { return settings_; }
+
+ private:
+  struct Workspace;
+  const SceneDataset& data_;
+  const SceneParameterMap& map_;
+  SceneLossSettings settings_;
+  std::vector<std::unique_ptr<Workspace>> workspaces_;
+};
+
+}  // namespace lcprelax::learn

@@ -1,0 +1,105 @@
+#pragma once
+// The learnable parameters θ of a multi-body scene and their map onto the World: which
+// body, material pair and static shape each parameter sets, and the pullback of a
+// WorldGradient (models/contact_system_gradient.hpp) to ∂ℓ/∂θ.
+//
+// Parameter layout (names in quotes; units SI; transforms of parameters.hpp):
+//   "mu" (log)                       the friction table's default μ; with per-pair friction
+//                                    also "mu[a,b]" (log) per listed material pair (a ≤ b);
+//                                    without it every pair takes "mu" (one global μ)
+//   per shape class c (bodies with identical shape, mass and inertia; scene_shape_classes):
+//   "class<c>.mass" (log, kg), "class<c>.inertia" (log, kg·m²),
+//   "class<c>.vertex<i>.x", "class<c>.vertex<i>.y" (identity, m, body frame)
+//   per half-plane h: "half_plane<h>.angle" (identity, rad: outward normal (cos ψ, sin ψ);
+//                     the floor y ≥ 0 has ψ = π/2), "half_plane<h>.offset" (identity, m)
+//   per segment s: "segment<s>.a.x", "segment<s>.a.y", "segment<s>.b.x", "segment<s>.b.y" (m)
+// Flags choose which kinds are learned (Parameter::learn); held parameters keep their
+// values. Static bodies have no class (they are static geometry held at their values).
+//
+// The body frame is FIXED while vertices are learned (as for the polygon, polygon_params.hpp):
+// its origin stays the point whose pose the state holds and about which the inertia is
+// taken; a learned vertex moves only itself, the polygon is not recentred. Mass and inertia
+// are independent parameters (not derived from a density).
+#include <lcprelax/learn/parameters.hpp>
+#include <lcprelax/models/contact_system_gradient.hpp>
+#include <lcprelax/world/world.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lcprelax::learn {
+
+/// Which parameter kinds are learned.
+struct SceneLearnFlags {
+  bool mu = true, mass = true, inertia = true, vertices = true, ground = false;
+};
+
+/// Parses a comma-separated list of "mu", "mass", "inertia", "vertices", "ground" (each at
+/// most once, at least one); throws InputError("--learn: ...") naming an unknown entry.
+SceneLearnFlags parse_scene_learn_flags(const std::string& list);
+
+struct SceneParameterSettings {
+  SceneLearnFlags learn;
+  bool mu_per_pair = false;  ///< one μ per listed material pair, else one global μ
+};
+
+/// Shape class of every body: dynamic bodies with identical vertices, mass and inertia share
+/// a class, numbered 0, 1, … in order of first appearance; static bodies get −1.
+std::vector<int> scene_shape_classes(const World& world);
+
+/// The map from θ to a World: built once for a scene, then apply() sets a world's
+/// parameters from θ and gradient() pulls ∂ℓ/∂(world primitives) back to ∂ℓ/∂θ.
+class SceneParameterMap {
+ public:
+  /// θ's layout for `world` (its current values are θ's initial values). Throws InputError
+  /// when the world has no dynamic body or when bodies of one class differ in vertex count.
+  SceneParameterMap(const World& world, const SceneParameterSettings& settings);
+
+  /// The parameters at the values of `world` (same layout for any world of the scene).
+  ParameterSet parameters(const World& world) const;
+  /// Sets the world's parameters from θ (bodies by class, friction table, static shapes).
+  void apply(const ParameterSet& theta, World& world) const;
+  /// ∂ℓ/∂θ (θ's order) from ∂ℓ/∂(world primitives) of `world`'s `contacts` (the contact
+  /// list the WorldGradient's contact_mu refers to).
+  Vector gradient(const World& world, const std::vector<Contact>& contacts, const WorldGradient& g) const;
+
+  Index size() const { return size_; }
+  const std::vector<int>& body_class() const { return body_class_; }
+  int num_classes() const { return static_cast<int>(class_vertices_.size()); }
+
+  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end };
+  Kind kind(Index k) const { return kind_[static_cast<std::size_t>(k)]; }
+  /// Length scale of parameter k (m): its class's radius for vertices, the mean class radius
+  /// for offsets and segment ends, 1 otherwise.
+  double length_scale(Index k) const { return scale_[static_cast<std::size_t>(k)]; }
+
+ private:
+  Index mu_index(const World& world, int material_a, int material_b) const;
+  static int material_of_b(const World& world, const Contact& c);
+
+  SceneParameterSettings settings_;
+  std::vector<int> body_class_;       ///< per body, −1 static
+  std::vector<int> class_vertices_;   ///< vertex count per class
+  std::vector<Index> class_first_;    ///< index of "class<c>.mass"
+  std::vector<std::pair<int, int>> pairs_;  ///< material pairs with their own μ (per-pair mode)
+  Index first_half_plane_ = 0, first_segment_ = 0;
+  Index size_ = 0;
+  std::vector<Kind> kind_;
+  std::vector<double> scale_;
+};
+
+/// Deterministic perturbation of θ for initial values: log parameters (μ, mass, inertia)
+/// scaled by (1 ± fraction), vertex coordinates moved by ±fraction·0.5·(class radius),
+/// half-plane offsets and segment ends by ±fraction·0.5·(mean class radius), angles by
+/// ±0.1·fraction rad; random signs from std::mt19937_64(seed) in layout order; only learned
+/// parameters move.
+ParameterSet perturb_scene_parameters(const ParameterSet& truth, const SceneParameterMap& map, double fraction,
+                                      std::uint64_t seed);
+
+/// Relative error of parameter k: |Δ|/|truth| for log parameters, |Δ|/(class radius) for
+/// vertex coordinates, |Δ|/(mean class radius) for offsets and segment ends, |Δ| (rad) for angles.
+double scene_relative_error(const ParameterSet& estimate, const ParameterSet& truth, const SceneParameterMap& map,
+                            Index k);
+
+}  // namespace lcprelax::learn

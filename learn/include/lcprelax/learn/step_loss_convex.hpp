@@ -1,0 +1,79 @@
+#pragma once
+// The convex loss of one island of one contact step (step_loss.hpp), posed sparse.
+//
+// Data (models/contact_system.hpp): J = [Jn; Jt] (rows: contacts, then friction rows),
+// D = M⁻¹ = diag(minv), gaps φ (m), μ per friction row, free velocity v* and the observed
+// next velocity v̄ (3 per island body: m/s, m/s, rad/s), Δt (s). Impulses λ = (λn, λt) in N·s.
+//
+// Model: the two-phase convex model of models/contact_step.hpp (solve_convex_model) with an
+// L2 deviation penalty of weight w ≥ 0 in both phase objectives, as the polygon convex loss
+// (polygon_losses.hpp): (w/2)‖v⁺(λ) − v̄‖²_M with v⁺ = v* + DJᵀλ adds (w/2)λᵀWλ + wλᵀJ(v* − v̄)
+// (+ const), W = J D Jᵀ. With c = (1 + w)v* − w v̄ and bn = Jn v* + max(φ, 0)/Δt:
+//   1. min_{λn ≥ 0} ½(1+w)λnᵀWnn λn + λnᵀ(Jn c + max(φ,0)/Δt)   s.t. Wnn λn + bn ≥ 0
+//   2. κ = eᵀmax(λn¹, 0);
+//      min ½(1+w)λᵀWλ + ρ Σ_i exp(φ_i) Wnn_ii λn_i² + λᵀJc
+//      s.t. Wn λ + bn ≥ 0,  λn ≥ 0,  eᵀλn ≤ κ(1 + s) + 1e-12 N·s,  |λt_f| ≤ μ_f λn_(row f)
+//   with s = 1e-6, else 1e-4, then 1e-2 where phase 2 fails (as models/src/convex_model.cpp).
+//   Phase 1's row Wnn λn + bn ≥ 0 is posed only for w > 0 (else κ can leave phase 2
+//   infeasible); with w = 0 it is implied by optimality, and posing it would make it weakly
+//   active wherever λn > 0. With w = 0 this is exactly solve_convex_model.
+//   Loss ℓ = ‖v⁺(λ²) − v̄‖² ((m/s)²), v⁺ = v* + DJᵀλ². Where no contact approaches in
+//   either of phase 1's terms (bn ≥ 0 and Jn c + max(φ,0)/Δt ≥ 0) λ = 0 exactly (phase 1's
+//   optimum is 0, so κ = 0) and ℓ = ‖v* − v̄‖², answered without a solve.
+//
+// Formulations (ConvexFormulation, as models/src/convex_model_qp.hpp):
+//   dual:   x = λ; Hessians (1+w)W (+ the ρ diagonal); non-penetration rows Wn λ ≥ −bn.
+//   lifted: x = (Δv, λ) with the equality M Δv − Jᵀλ = 0; ½(1+w)λᵀWλ = ½(1+w)ΔvᵀMΔv and
+//           the non-penetration rows are Jn Δv ≥ −bn, so W is never formed: the KKT matrix
+//           holds only M and J (the form for islands of thousands of contacts).
+//   automatic: lifted from kLiftedMinContacts contacts on. Both give the same ℓ and
+//   gradient to the QP tolerance.
+//
+// Gradient (reverse mode, chained by hand): g = 2(v⁺ − v̄); ∂ℓ/∂λ² = JDg; phase 2's adjoint
+// by QpSolver::backward (OptNet: Amos & Kolter 2017, ICML), reusing its final factorization,
+// gives ∂ℓ/∂(P, q, A, G, l, u); ∂ℓ/∂κ = (1 + s)·∂ℓ/∂u_κ, and ∂ℓ/∂λn¹_i = ∂ℓ/∂κ where
+// λn¹_i > 0; phase 1's adjoint likewise. The QP data's cotangents are then pulled back to
+// the island data: W = JDJᵀ gives ∂ℓ/∂J += 2 W̄ₛ J D and ∂ℓ/∂D_k += (Jᵀ W̄ₛ J)_kk (W̄ₛ the
+// symmetric part of ∂ℓ/∂W); the ρ term gives ∂ℓ/∂φ_i += P̄_ii·2ρ exp(φ_i)Wnn_ii and
+// ∂ℓ/∂Wnn_ii += P̄_ii·2ρ exp(φ_i); M = diag(1/minv) gives ∂ℓ/∂minv_k = −M̄_kk/minv_k²;
+// max(φ, 0)/Δt gives 1/Δt where φ > 0 (0 else: a kink at φ = 0). Where the solution is
+// degenerate (a weakly active constraint, a non-unique λ) the derivative is that of the
+// interior point's final iterate (qp_solver.hpp); where an adjoint residual exceeds 1e-6
+// the result is marked solved_inaccurate and its message says so.
+//
+// Status: solved when both phases reach the QP tolerance; solved_inaccurate when a phase
+// stalled within 1e3·eps or the adjoint residual is large; failed (message names the
+// phase) when a phase has no solution: loss is then NaN and the gradient zero.
+#include <lcprelax/kkt/qp_settings.hpp>
+#include <lcprelax/learn/step_loss.hpp>
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/contact_system.hpp>
+
+#include <string>
+
+namespace lcprelax::learn {
+
+struct ConvexStepLossSettings {
+  QpSettings qp;                 ///< both phases (QpSettings' defaults)
+  double rho = 1e-3;             ///< ρ of the softening term (contact_step.hpp), ≥ 0
+  double deviation = 1.0;        ///< w of the deviation penalty, ≥ 0
+  ConvexFormulation formulation = ConvexFormulation::automatic;
+
+  /// Empty when valid, else a message naming the first bad field ("rho: must be ...").
+  std::string validation_error() const;
+};
+
+/// Seconds spent in the last call (phases of convex_step_loss).
+struct ConvexStepLossTimes {
+  double assembly = 0.0, solve = 0.0, backward = 0.0;
+};
+
+/// The convex loss of island `s` for the observed next velocity `target` (s.num_dofs()
+/// entries) and time step `dt` (s, > 0), with its gradient ∂ℓ/∂(Jn, Jt, φ, μ, M⁻¹, v*).
+/// Throws InputError naming the field for invalid settings, inconsistent sizes of `s`,
+/// non-finite data, minv ≤ 0, or a bad `target` or `dt`. `times` (optional) receives the
+/// seconds of this call.
+StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, double dt,
+                                const ConvexStepLossSettings& settings, ConvexStepLossTimes* times = nullptr);
+
+}  // namespace lcprelax::learn

@@ -1,0 +1,280 @@
+// The convex step loss's phase QPs (dual and lifted) and the pullback of their gradients to
+// the island data (step_loss_convex_qp.hpp; formulas in step_loss_convex.hpp).
+#include "step_loss_convex_qp.hpp"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace lcprelax::learn::detail {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+SparseMatrix from_triplets(Index rows, Index cols, const std::vector<Triplet>& t) {
+  SparseMatrix A(rows, cols);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+// Appends the entries of A (or Aᵀ when `transpose`) at (row_offset, col_offset), times scale.
+void append(std::vector<Triplet>& t, const SparseMatrix& A, Index row_offset, Index col_offset, double scale,
+            bool transpose = false) {
+  for (Index j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+      const Index r = transpose ? j : it.row(), c = transpose ? it.row() : j;
+      t.emplace_back(row_offset + r, col_offset + c, scale * it.value());
+    }
+}
+
+SparseMatrix upper(const SparseMatrix& A) {
+  SparseMatrix U = A.triangularView<Eigen::Upper>();
+  U.makeCompressed();
+  return U;
+}
+
+// Lifted equality M Δv − Jnᵀλn (− Jtᵀλt when `friction`) = 0, Δv first in x.
+void lifted_equality(const ContactSystem& s, bool friction, QpProblem& p) {
+  const Index nv = s.num_dofs(), nc = s.num_contacts();
+  std::vector<Triplet> t;
+  for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+  append(t, s.Jn, 0, nv, -1.0, /*transpose=*/true);
+  if (friction) append(t, s.Jt, 0, nv + nc, -1.0, /*transpose=*/true);
+  p.A = from_triplets(nv, p.num_variables(), t);
+  p.b = Vector::Zero(nv);
+}
+
+// Non-penetration rows 0..nc: Wn λ (dual: W's entries in rows < nc and columns < `cols`)
+// or Jn Δv (lifted).
+void contact_rows(const ConvexLossData& d, Index cols, std::vector<Triplet>& g) {
+  if (d.lifted) {
+    append(g, d.s.Jn, 0, 0, 1.0);
+    return;
+  }
+  for (Index c = 0; c < cols; ++c)
+    for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
+      if (it.row() < d.nc) g.emplace_back(it.row(), c, it.value());
+}
+
+}  // namespace
+
+SparseMatrix zero_like(const SparseMatrix& A) {
+  SparseMatrix Z = A;
+  Z.makeCompressed();
+  for (Index k = 0; k < Z.nonZeros(); ++k) Z.valuePtr()[k] = 0.0;
+  return Z;
+}
+
+ConvexLossData::ConvexLossData(const ContactSystem& system, const Vector& target, double dt_in, double w_in,
+                               bool lifted_in)
+    : s(system), dt(dt_in), w(w_in), lifted(lifted_in), nc(system.num_contacts()), nf(system.num_friction()),
+      nv(system.num_dofs()) {
+  gap = s.phi.cwiseMax(0.0) / dt;
+  bn = s.Jn * s.v_star + gap;
+  c = (1.0 + w) * s.v_star - w * target;
+  w_nn = Vector::Zero(nc);
+  for (Index j = 0; j < s.Jn.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) w_nn(it.row()) += it.value() * it.value() * s.minv(j);
+  if (!lifted) {
+    std::vector<Triplet> t;
+    append(t, s.Jn, 0, 0, 1.0);
+    append(t, s.Jt, nc, 0, 1.0);
+    J = from_triplets(nc + nf, nv, t);
+    W = delassus(s);
+    W.makeCompressed();
+  }
+}
+
+ConvexLossQp convex_loss_phase1(const ConvexLossData& d) {
+  const ContactSystem& s = d.s;
+  const Index nc = d.nc, nv = d.nv;
+  ConvexLossQp out;
+  std::vector<Triplet> g;
+  if (!d.lifted) {
+    out.problem = QpProblem(nc);
+    const SparseMatrix Wnn = d.W.topLeftCorner(nc, nc);
+    out.problem.P = upper((1.0 + d.w) * Wnn);
+  } else {  // x = (Δv, λn): ½(1+w)ΔvᵀMΔv, M Δv = Jnᵀλn
+    out.problem = QpProblem(nv + nc);
+    std::vector<Triplet> t;
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
+    out.problem.P = from_triplets(nv + nc, nv + nc, t);
+    lifted_equality(s, /*friction=*/false, out.problem);
+    out.lambda_offset = nv;
+  }
+  QpProblem& p = out.problem;
+  // Wnn λn + bn ≥ 0: implied by optimality when w = 0 (and then weakly active wherever
+  // λn > 0, a degenerate row the adjoint would only interpolate), so posed only for w > 0.
+  if (d.w > 0.0) {
+    contact_rows(d, nc, g);
+    p.G = from_triplets(nc, p.num_variables(), g);
+    p.l = -d.bn;
+    p.u = Vector::Constant(nc, kInf);
+  }
+  p.q.tail(nc) = s.Jn * d.c + d.gap;
+  p.xl.tail(nc).setZero();
+  return out;
+}
+
+ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho) {
+  const ContactSystem& s = d.s;
+  const Index nc = d.nc, nf = d.nf, nv = d.nv;
+  const Index ln = d.lifted ? nv : 0, lt = ln + nc, n = lt + nf, m = nc + 1 + 2 * nf;
+  ConvexLossQp out;
+  out.problem = QpProblem(n);
+  out.lambda_offset = ln;
+  QpProblem& p = out.problem;
+  if (d.lifted) {
+    std::vector<Triplet> t;
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
+    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i));
+    p.P = from_triplets(n, n, t);
+    lifted_equality(s, /*friction=*/true, p);
+  } else {
+    SparseMatrix P = (1.0 + d.w) * d.W;
+    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i);
+    p.P = upper(P);
+  }
+  std::vector<Triplet> g;
+  contact_rows(d, n, g);
+  for (Index i = 0; i < nc; ++i) g.emplace_back(nc, ln + i, 1.0);
+  for (Index f = 0; f < nf; ++f) {  // λt − μλn ≤ 0, λt + μλn ≥ 0
+    g.emplace_back(nc + 1 + 2 * f, lt + f, 1.0);
+    g.emplace_back(nc + 1 + 2 * f, ln + s.friction_rows[f], -s.mu(f));
+    g.emplace_back(nc + 2 + 2 * f, lt + f, 1.0);
+    g.emplace_back(nc + 2 + 2 * f, ln + s.friction_rows[f], s.mu(f));
+  }
+  p.G = from_triplets(m, n, g);
+  p.l = Vector::Constant(m, -kInf);
+  p.u = Vector::Constant(m, kInf);
+  p.l.head(nc) = -d.bn;
+  for (Index f = 0; f < nf; ++f) {
+    p.u(nc + 1 + 2 * f) = 0.0;
+    p.l(nc + 2 + 2 * f) = 0.0;
+  }
+  p.q.segment(ln, nc) = s.Jn * d.c;
+  p.q.segment(lt, nf) = s.Jt * d.c;
+  p.xl.segment(ln, nc).setZero();
+  return out;
+}
+
+ConvexLossPullback::ConvexLossPullback(const ConvexLossData& data)
+    : d(data), Jn_bar(zero_like(data.s.Jn)), Jt_bar(zero_like(data.s.Jt)) {
+  if (!d.lifted) W_bar = zero_like(d.W);
+  bn_bar = gap_bar = w_nn_bar = phi_bar = Vector::Zero(d.nc);
+  mu_bar = Vector::Zero(d.nf);
+  c_bar = minv_bar = Vector::Zero(d.nv);
+}
+
+void ConvexLossPullback::add_J(Index row, Index col, double v) {
+  if (row < d.nc)
+    Jn_bar.coeffRef(row, col) += v;
+  else
+    Jt_bar.coeffRef(row - d.nc, col) += v;
+}
+
+void ConvexLossPullback::add_outer(const Vector& a, const Vector& b) {
+  for (Index k = 0; k < d.nv; ++k) {
+    for (SparseMatrix::InnerIterator it(Jn_bar, k); it; ++it) it.valueRef() += a(it.row()) * b(k);
+    for (SparseMatrix::InnerIterator it(Jt_bar, k); it; ++it) it.valueRef() += a(d.nc + it.row()) * b(k);
+  }
+}
+
+double ConvexLossPullback::add_phase(int phase, const ConvexLossQp& qp, const QpGradient& g, double rho) {
+  const ContactSystem& s = d.s;
+  const Index nc = d.nc, nf = d.nf, nv = d.nv, off = qp.lambda_offset;
+  // q = J c (+ gap on λn in phase 1).
+  Vector q_bar = Vector::Zero(nc + nf);
+  q_bar.head(nc) = g.dq.segment(off, nc);
+  if (phase == 2) q_bar.tail(nf) = g.dq.segment(off + nc, nf);
+  add_outer(q_bar, d.c);
+  c_bar += s.Jn.transpose() * q_bar.head(nc) + s.Jt.transpose() * q_bar.tail(nf);
+  if (phase == 1) gap_bar += q_bar.head(nc);
+  // l = −bn on the contact rows.
+  if (g.dl.size() >= nc) bn_bar -= g.dl.head(nc);
+  // P: (1+w)W or (1+w)M, and the ρ diagonal on λn (phase 2).
+  auto add_rho = [&](Index i, double v) {
+    const double ex = 2.0 * rho * std::exp(s.phi(i));
+    phi_bar(i) += v * ex * d.w_nn(i);
+    w_nn_bar(i) += v * ex;
+  };
+  for (Index j = 0; j < g.dP.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(g.dP, j); it; ++it) {
+      const Index i = it.row();
+      const double v = it.value();
+      if (!d.lifted) {
+        W_bar.coeffRef(i, j) += (1.0 + d.w) * v;
+        if (phase == 2 && i == j && i < nc) add_rho(i, v);
+      } else if (i == j && j < nv) {
+        minv_bar(j) -= (1.0 + d.w) * v / (s.minv(j) * s.minv(j));
+      } else if (i == j && phase == 2 && j - nv < nc) {
+        add_rho(j - nv, v);
+      }
+    }
+  // A (lifted): [M, −Jnᵀ, −Jtᵀ].
+  if (d.lifted)
+    for (Index col = 0; col < g.dA.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator it(g.dA, col); it; ++it) {
+        const Index r = it.row();
+        if (col < nv)
+          minv_bar(col) -= it.value() / (s.minv(col) * s.minv(col));
+        else
+          add_J(col - nv, r, -it.value());
+      }
+  // G: contact rows (Wn or Jn), eᵀ row, friction rows.
+  for (Index col = 0; col < g.dG.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(g.dG, col); it; ++it) {
+      const Index r = it.row();
+      if (r < nc) {
+        if (!d.lifted)
+          W_bar.coeffRef(r, col) += it.value();
+        else if (col < nv)
+          Jn_bar.coeffRef(r, col) += it.value();
+      } else if (r > nc) {
+        const Index f = (r - nc - 1) / 2;
+        if (col == off + s.friction_rows[f]) mu_bar(f) += ((r - nc - 1) % 2 == 0 ? -1.0 : 1.0) * it.value();
+      }
+    }
+  return phase == 2 ? g.du(nc) : 0.0;
+}
+
+void ConvexLossPullback::finish(ContactSystemCotangent& out) {
+  const ContactSystem& s = d.s;
+  if (!d.lifted) {  // W = J D Jᵀ: J̄ += 2 W̄ₛ J D, D̄_k += (Jᵀ W̄ₛ J)_kk
+    const SparseMatrix Ws = 0.5 * (SparseMatrix(W_bar.transpose()) + W_bar);
+    const SparseMatrix B = Ws * d.J;
+    Vector col = Vector::Zero(d.nc + d.nf);
+    for (Index k = 0; k < d.nv; ++k) {
+      for (SparseMatrix::InnerIterator it(B, k); it; ++it) col(it.row()) = it.value();
+      for (SparseMatrix::InnerIterator it(d.J, k); it; ++it) {
+        add_J(it.row(), k, 2.0 * col(it.row()) * s.minv(k));
+        minv_bar(k) += it.value() * col(it.row());
+      }
+      for (SparseMatrix::InnerIterator it(B, k); it; ++it) col(it.row()) = 0.0;
+    }
+  }
+  // w_nn_i = Σ_j Jn_ij² minv_j.
+  for (Index k = 0; k < d.nv; ++k) {
+    SparseMatrix::InnerIterator b(Jn_bar, k);
+    for (SparseMatrix::InnerIterator it(s.Jn, k); it; ++it, ++b) {
+      b.valueRef() += 2.0 * it.value() * s.minv(k) * w_nn_bar(it.row());
+      minv_bar(k) += it.value() * it.value() * w_nn_bar(it.row());
+    }
+  }
+  // bn = Jn v* + gap, gap = max(φ, 0)/Δt, c = (1 + w)v* − w v̄.
+  Vector a = Vector::Zero(d.nc + d.nf);
+  a.head(d.nc) = bn_bar;
+  add_outer(a, s.v_star);
+  out.v_star += s.Jn.transpose() * bn_bar + (1.0 + d.w) * c_bar;
+  gap_bar += bn_bar;
+  for (Index i = 0; i < d.nc; ++i)
+    if (s.phi(i) > 0.0) phi_bar(i) += gap_bar(i) / d.dt;
+  out.phi += phi_bar;
+  out.mu += mu_bar;
+  out.minv += minv_bar;
+  out.Jn += Jn_bar;
+  out.Jt += Jt_bar;
+}
+
+}  // namespace lcprelax::learn::detail

@@ -1,0 +1,61 @@
+#pragma once
+// The two phase QPs of the convex step loss in the dual or the lifted formulation, and the
+// pullback of their QpGradient to the island data (step_loss_convex.hpp states the model,
+// the formulations and the chain rule). Internal to lcprelax_learn.
+#include <lcprelax/kkt/qp_gradient.hpp>
+#include <lcprelax/kkt/qp_problem.hpp>
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/contact_system.hpp>
+#include <lcprelax/models/contact_system_gradient.hpp>
+
+namespace lcprelax::learn::detail {
+
+/// What both phases need of one island.
+struct ConvexLossData {
+  ConvexLossData(const ContactSystem& system, const Vector& target, double dt, double w, bool lifted);
+  const ContactSystem& s;
+  double dt, w;
+  bool lifted;
+  Index nc, nf, nv;
+  Vector gap;   ///< max(φ, 0)/Δt per contact (m/s)
+  Vector bn;    ///< Jn v* + gap
+  Vector c;     ///< (1 + w)v* − w v̄: the linear terms are J c (+ gap in phase 1)
+  Vector w_nn;  ///< diag(Jn D Jnᵀ)
+  SparseMatrix J;  ///< [Jn; Jt] (dual only)
+  SparseMatrix W;  ///< J D Jᵀ (dual only)
+};
+
+/// A phase QP; x(lambda_offset + i) is λn_i (i < nc) or λt_(i − nc).
+struct ConvexLossQp {
+  QpProblem problem;
+  Index lambda_offset = 0;
+};
+
+ConvexLossQp convex_loss_phase1(const ConvexLossData& d);
+/// Phase 2 with u(nc) = +∞ (the caller sets the κ bound).
+ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho);
+
+/// Cotangents of the intermediate quantities, accumulated over both phases, then pulled
+/// back to the island data by finish().
+struct ConvexLossPullback {
+  explicit ConvexLossPullback(const ConvexLossData& d);
+  /// Adds phase `phase` (1 or 2)'s QP gradient; returns ∂ℓ/∂u(nc) for phase 2 (else 0).
+  double add_phase(int phase, const ConvexLossQp& qp, const QpGradient& g, double rho);
+  /// Adds ∂ℓ/∂J_ij = a_i b_j on J's pattern (rows: contacts, then friction rows).
+  void add_outer(const Vector& a, const Vector& b);
+  /// Writes the total into `out` (whose fields already hold explicit terms, added to).
+  void finish(ContactSystemCotangent& out);
+
+  const ConvexLossData& d;
+  SparseMatrix Jn_bar, Jt_bar;  ///< on Jn's and Jt's patterns
+  SparseMatrix W_bar;           ///< dual: on W's pattern (not symmetric)
+  Vector bn_bar, gap_bar, c_bar, w_nn_bar, phi_bar, mu_bar, minv_bar;
+
+ private:
+  void add_J(Index row, Index col, double v);
+};
+
+/// A's pattern with zero values.
+SparseMatrix zero_like(const SparseMatrix& A);
+
+}  // namespace lcprelax::learn::detail

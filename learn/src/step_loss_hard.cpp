@@ -1,0 +1,213 @@
+// The hard loss of one island (step_loss_hard.hpp): the sparse Stewart–Trinkle LCP by
+// Lemke, LemkeSolver::backward, and the chain rule to ∂ℓ/∂(Jn, Jt, φ, μ, M⁻¹, v*).
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/learn/step_loss_hard.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+namespace lcprelax::learn {
+namespace {
+
+// Deterministic u ∈ [½, 1) for LCP row i and pattern `seed` (a splitmix64 mix).
+double perturbation_weight(Index i, int seed) {
+  std::uint64_t x = static_cast<std::uint64_t>(i) * 0xD1B54A32D192ED03ULL + static_cast<std::uint64_t>(seed + 7);
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  x ^= x >> 31;
+  return 0.5 + 0.5 * static_cast<double>(x >> 11) * 0x1.0p-53;
+}
+
+bool finite(const Vector& v) { return v.allFinite(); }
+bool finite(const SparseMatrix& A) {
+  for (Index k = 0; k < A.nonZeros(); ++k)
+    if (!std::isfinite(A.valuePtr()[k])) return false;
+  return true;
+}
+
+// [Jn; Jt] as one sparse matrix (rows: contacts, then friction rows).
+SparseMatrix stack_rows(const SparseMatrix& Jn, const SparseMatrix& Jt) {
+  SparseMatrix J(Jn.rows() + Jt.rows(), Jn.cols());
+  std::vector<Triplet> t;
+  t.reserve(static_cast<std::size_t>(Jn.nonZeros() + Jt.nonZeros()));
+  for (Index c = 0; c < Jn.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(Jn, c); it; ++it) t.emplace_back(it.row(), c, it.value());
+  for (Index c = 0; c < Jt.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(Jt, c); it; ++it) t.emplace_back(Jn.rows() + it.row(), c, it.value());
+  J.setFromTriplets(t.begin(), t.end());
+  J.makeCompressed();
+  return J;
+}
+
+// Copies the rows [first, first + rows) of the values of Jg (J's pattern) into out (the
+// pattern of the block it came from, with the same entries).
+void split_rows(const SparseMatrix& Jg, Index first, const SparseMatrix& block, SparseMatrix& out) {
+  out = block;
+  for (Index c = 0; c < out.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(out, c); it; ++it) it.valueRef() = Jg.coeff(first + it.row(), c);
+}
+
+}  // namespace
+
+void validate_step_loss_input(const ContactSystem& s, const Vector& target, double dt) {
+  const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
+  auto fail = [](const std::string& m) { throw InputError("step loss: " + m); };
+  if (!(dt > 0.0) || !std::isfinite(dt)) fail("dt: must be finite and > 0");
+  if (s.minv.size() != nd) fail("minv: size must be 3·bodies");
+  if (!finite(s.minv) || (s.minv.array() <= 0.0).any()) fail("minv: must be finite and > 0");
+  if (s.Jn.rows() != nc || s.Jn.cols() != nd) fail("Jn: must be contacts × 3·bodies");
+  if (s.Jt.rows() != nf || s.Jt.cols() != nd) fail("Jt: must be friction rows × 3·bodies");
+  if (!finite(s.Jn)) fail("Jn: non-finite entry");
+  if (!finite(s.Jt)) fail("Jt: non-finite entry");
+  if (s.phi.size() != nc || !finite(s.phi)) fail("phi: must be finite, one per contact");
+  if (s.mu.size() != nf || !finite(s.mu) || (s.mu.array() < 0.0).any())
+    fail("mu: must be finite and >= 0, one per friction row");
+  for (int r : s.friction_rows)
+    if (r < 0 || r >= nc) fail("friction_rows: entry out of range");
+  if (s.v_star.size() != nd || !finite(s.v_star)) fail("v_star: must be finite, 3 per body");
+  if (target.size() != nd || !finite(target)) fail("target: must be finite, 3 per body");
+}
+
+std::string HardStepLossSettings::validation_error() const {
+  const std::string e = lemke.validation_error();
+  return e.empty() ? e : "lemke: " + e;
+}
+
+StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, double dt,
+                              const HardStepLossSettings& settings, const std::vector<bool>& warm_basis,
+                              std::vector<bool>* final_basis) {
+  if (const std::string e = settings.validation_error(); !e.empty()) throw InputError("HardStepLossSettings: " + e);
+  validate_step_loss_input(s, target, dt);
+  const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
+  const Index n = nc + 3 * nf, bp = nc, bm = nc + nf, gm = nc + 2 * nf;
+  StepLossResult r;
+  r.grad.Jn = s.Jn;
+  r.grad.Jt = s.Jt;
+  for (Index k = 0; k < r.grad.Jn.nonZeros(); ++k) r.grad.Jn.valuePtr()[k] = 0.0;
+  for (Index k = 0; k < r.grad.Jt.nonZeros(); ++k) r.grad.Jt.valuePtr()[k] = 0.0;
+  r.grad.phi = Vector::Zero(nc);
+  r.grad.mu = Vector::Zero(nf);
+  r.grad.minv = Vector::Zero(nd);
+  r.grad.v_star = Vector::Zero(nd);
+  if (final_basis) final_basis->clear();
+  if (n == 0) {  // no contact: v⁺ = v*
+    r.status = ContactStatus::solved;
+    r.v_next = s.v_star;
+    r.loss = (s.v_star - target).squaredNorm();
+    r.grad.v_star = 2.0 * (s.v_star - target);
+    return r;
+  }
+
+  // Solve: the attempts of solve_lcp_model (header comment).
+  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
+  const bool has_warm = static_cast<Index>(warm_basis.size()) == n;
+  LemkeSettings plain = settings.lemke;
+  plain.covering_retries = 0;
+  plain.regularization_retries = 0;
+  LemkeSettings warm_only = plain;
+  warm_only.max_pivots = 1;
+  std::vector<LemkeSolver> solvers;
+  solvers.reserve(2 * kLcpPerturbationSeeds + 3);
+  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> LemkeSolver& {
+    solvers.emplace_back(ls);
+    solvers.back().setup(lcp.M, q);
+    if (basis) solvers.back().warm_start(*basis);
+    r.work += solvers.back().solve().info.pivots;
+    return solvers.back();
+  };
+  auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
+  LemkeSolver* sol = &attempt(plain, lcp.q, has_warm ? &warm_basis : nullptr);
+  bool perturbed = false;
+  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(sol); ++seed, delta *= 10.0) {
+    Vector q = lcp.q;
+    for (Index i = 0; i < n; ++i) q(i) += delta * perturbation_weight(i, seed);
+    LemkeSolver& rp = attempt(plain, q, has_warm ? &warm_basis : nullptr);
+    if (!solved(&rp)) continue;
+    const std::vector<bool> basis = rp.result().z_basic;
+    LemkeSolver& polished = attempt(warm_only, lcp.q, &basis);
+    perturbed = !solved(&polished);
+    sol = perturbed ? &rp : &polished;
+  }
+  if (!solved(sol)) sol = &attempt(settings.lemke, lcp.q, nullptr);
+  if (!solved(sol)) {
+    r.status = ContactStatus::failed;
+    r.message = "lcp: " + sol->result().info.message;
+    r.loss = std::numeric_limits<double>::quiet_NaN();
+    r.v_next = s.v_star;
+    return r;
+  }
+  r.status = perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;
+  if (perturbed) r.message = "solved on a perturbed q (polishing on q failed)";
+  const LcpResult& res = sol->result();
+  if (final_basis) *final_basis = res.z_basic;
+  const Vector ln = res.z.head(nc);
+  const Vector lt = res.z.segment(bp, nf) - res.z.segment(bm, nf);
+  const Vector jtl = s.Jn.transpose() * ln + s.Jt.transpose() * lt;  // Jᵀλ
+  r.v_next = s.v_star + s.minv.cwiseProduct(jtl);
+  const Vector g = 2.0 * (r.v_next - target);
+  r.loss = 0.25 * g.squaredNorm();
+
+  // Backward through Lemke.
+  const Vector a = s.minv.cwiseProduct(g);
+  const Vector jna = s.Jn * a, jta = s.Jt * a;
+  Vector dz = Vector::Zero(n);
+  dz.head(nc) = jna;
+  dz.segment(bp, nf) = jta;
+  dz.segment(bm, nf) = -jta;
+  const LcpGradient lg = sol->backward(dz);
+
+  // G = ∂ℓ/∂W from ∂ℓ/∂M_lcp, and ∂ℓ/∂μ.
+  const Index nr = nc + nf;
+  auto jrow = [&](Index R, double& sign) -> Index {  // LCP row/column → J row (or −1)
+    sign = 1.0;
+    if (R < nc) return R;
+    if (R < bm) return R;  // β⁺_f → J row nc + f = R
+    if (R < gm) {
+      sign = -1.0;
+      return R - nf;  // β⁻_f → J row nc + f
+    }
+    return -1;
+  };
+  std::vector<Triplet> gt;
+  gt.reserve(static_cast<std::size_t>(lg.dM.nonZeros()));
+  for (Index C = 0; C < lg.dM.outerSize(); ++C)
+    for (SparseMatrix::InnerIterator it(lg.dM, C); it; ++it) {
+      double sr = 0.0, sc = 0.0;
+      const Index rr = jrow(it.row(), sr), cc = jrow(C, sc);
+      if (rr >= 0 && cc >= 0) gt.emplace_back(rr, cc, sr * sc * it.value());
+    }
+  SparseMatrix G(nr, nr);
+  G.setFromTriplets(gt.begin(), gt.end());
+  for (Index f = 0; f < nf; ++f) r.grad.mu(f) = lg.dM.coeff(gm + f, s.friction_rows[static_cast<std::size_t>(f)]);
+  const Vector dqn = lg.dq.head(nc);
+  const Vector dqt = lg.dq.segment(bp, nf) - lg.dq.segment(bm, nf);
+
+  // ∂ℓ/∂J on J's pattern, ∂ℓ/∂M⁻¹.
+  const SparseMatrix J = stack_rows(s.Jn, s.Jt);
+  const SparseMatrix GJ = G * J;
+  const SparseMatrix GtJ = SparseMatrix(G.transpose()) * J;
+  Vector dq_all(nr), lam(nr);
+  dq_all << dqn, dqt;
+  lam << ln, lt;
+  SparseMatrix dJ = J;
+  for (Index k = 0; k < nd; ++k)
+    for (SparseMatrix::InnerIterator it(dJ, k); it; ++it) {
+      const Index i = it.row();
+      const double gj = GJ.coeff(i, k);
+      it.valueRef() = (gj + GtJ.coeff(i, k)) * s.minv(k) + dq_all(i) * s.v_star(k) + lam(i) * a(k);
+      r.grad.minv(k) += J.coeff(i, k) * gj;  // (Jᵀ G J)_kk = Σ_i J_ik (GJ)_ik
+    }
+  r.grad.minv += g.cwiseProduct(jtl);
+  split_rows(dJ, 0, s.Jn, r.grad.Jn);
+  split_rows(dJ, nc, s.Jt, r.grad.Jt);
+  r.grad.v_star = g + s.Jn.transpose() * dqn + s.Jt.transpose() * dqt;
+  for (Index c = 0; c < nc; ++c) r.grad.phi(c) = s.phi(c) > 0.0 ? dqn(c) / dt : 0.0;
+  return r;
+}
+
+}  // namespace lcprelax::learn

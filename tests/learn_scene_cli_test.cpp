@@ -1,0 +1,92 @@
+// `lcprelax learn scene` (docs/cli.md). Expected behaviour:
+// - a short run of every method on a generated 10-body learning pile exits 0 and prints one
+//   JSON object with the contract fields (method, true, initial, learned, relative_error,
+//   final_loss, epochs, stop_reason, seconds, transitions, failed_islands); the CSV log has a
+//   header and one row per epoch; --learn selects the kinds (mu alone: one learned name);
+// - --scene FILE.json generates the data from the file's scene;
+// - bad input exits 2 with a message on stderr naming the option, file line or field, and
+//   nothing on stdout: an unknown --learn kind, an unknown method, --data without --scene,
+//   a trajectory whose frames have another number of bodies than the scene, a NaN in the
+//   trajectory, a step gap.
+#include "cli_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace lcprelax {
+namespace {
+
+using namespace testing_support;
+
+const std::string kStack = std::string(LCPRELAX_TEST_DATA_DIR) + "/scenes/box_stack.json";
+
+class CliLearnScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CliLearnScene, ShortRunReportsTheContractFields) {
+  const std::string log = temp_path("scene_" + GetParam() + ".csv");
+  const CliRun r = run_cli("learn scene --bodies 10 --steps 30 --method " + GetParam() +
+                           " --epochs 3 --threads 2 --json --log '" + log + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"method", "true", "initial", "learned", "relative_error", "final_loss", "epochs",
+                          "stop_reason", "seconds", "transitions", "failed_islands"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["method"], GetParam());
+  EXPECT_EQ(j["epochs"], 3);
+  EXPECT_DOUBLE_EQ(j["true"]["mu"].get<double>(), 0.5);
+  EXPECT_NE(j["initial"]["mu"].get<double>(), 0.5);
+  EXPECT_EQ(j["learned"].size(), j["relative_error"].size());
+  EXPECT_TRUE(j["learned"].contains("class0.vertex0.x"));
+  EXPECT_EQ(j["failed_islands"], 0);
+  const std::string csv = slurp(log);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4) << csv;
+  std::filesystem::remove(log);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, CliLearnScene, ::testing::Values("hard", "relaxed", "convex"));
+
+TEST(CliLearnSceneOptions, LearnSelectsKindsAndSceneFilesWork) {
+  const CliRun r = run_cli("learn scene --scene '" + kStack + "' --steps 20 --learn mu --epochs 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["learned"].size(), 1u);
+  EXPECT_EQ(j["bodies"], 3);
+}
+
+void expect_bad_input(const std::string& args, const std::string& needle) {
+  const CliRun r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err << r.out;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err << " (expected '" << needle << "')";
+}
+
+std::string write_trajectory(const std::string& name, int bodies, int frames, bool nan_in_frame_1, bool gap) {
+  const std::string path = temp_path(name);
+  std::ofstream out(path);
+  out << "step,time,body,x,y,theta,vx,vy,omega\n";
+  for (int f = 0; f < frames; ++f) {
+    const int step = gap && f == frames - 1 ? f + 1 : f;
+    for (int b = 0; b < bodies; ++b)
+      out << step << ',' << 0.01 * step << ',' << b << ',' << 0.0 << ',' << 0.5 + b << ",0,"
+          << ((nan_in_frame_1 && f == 1 && b == 1) ? "nan" : "0") << ",0,0\n";
+  }
+  return path;
+}
+
+TEST(CliLearnSceneBadInput, ExitsTwoNamingTheProblem) {
+  expect_bad_input("learn scene --learn mu,friction --json", "friction");
+  expect_bad_input("learn scene --method soft --json", "--method");
+  expect_bad_input("learn scene --data x.csv --json", "--data");
+  const std::string wrong_bodies = write_trajectory("scene_2_bodies.csv", 2, 3, false, false);
+  expect_bad_input("learn scene --scene '" + kStack + "' --data '" + wrong_bodies + "' --json", ":2:");
+  const std::string with_nan = write_trajectory("scene_nan.csv", 3, 3, true, false);
+  expect_bad_input("learn scene --scene '" + kStack + "' --data '" + with_nan + "' --json", ":6:");
+  const std::string with_gap = write_trajectory("scene_gap.csv", 3, 3, false, true);
+  expect_bad_input("learn scene --scene '" + kStack + "' --data '" + with_gap + "' --json", "scene_gap.csv");
+  std::filesystem::remove(wrong_bodies), std::filesystem::remove(with_nan), std::filesystem::remove(with_gap);
+}
+
+}  // namespace
+}  // namespace lcprelax

@@ -1,0 +1,331 @@
+// The sparse convex step loss (learn/step_loss_convex.hpp): with w = 0 its forward is
+// models' solve_convex_model; central differences of ℓ against every entry of the
+// cotangent (Jn, Jt on their patterns, φ, μ, M⁻¹, v*) in the dual and the lifted
+// formulation, on hand-made islands and on one ≥ 60-contact island of a settled 20-body
+// pile; dual and lifted agree. DISABLED_Timing prints forward + backward times (no
+// assertion; run with --gtest_also_run_disabled_tests).
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/learn/step_loss_convex.hpp>
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/simulator.hpp>
+#include <lcprelax/scenes/pile_scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace lcprelax::learn {
+namespace {
+
+constexpr double kDt = 1e-2;
+
+ConvexStepLossSettings tight(ConvexFormulation form, double w = 1.0, double eps = 1e-12) {
+  ConvexStepLossSettings s;
+  s.qp.eps_abs = eps;
+  s.formulation = form;
+  s.deviation = w;
+  return s;
+}
+
+// The largest island of `world`'s next step (the simulator's own contacts and margin).
+ContactSystem largest_island(const World& world, const SimulatorSettings& settings) {
+  const StepContacts sc = find_step_contacts(world, settings);
+  EXPECT_FALSE(sc.islands.empty());
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < sc.islands.size(); ++k)
+    if (sc.islands[k].contacts.size() > sc.islands[best].contacts.size()) best = k;
+  ContactSystem s = assemble_contact_system(world, sc.contacts, sc.islands[best], settings.dt);
+  s.Jn.makeCompressed();
+  s.Jt.makeCompressed();
+  return s;
+}
+
+// Boxes of side 0.5 m stacked on the ground, lifted by small distinct gaps (so that no gap
+// sits on the kink of max(φ, 0)) and slightly tilted, with velocities `v` (one per box).
+ContactSystem boxes(int count, double mu, const std::vector<Vec3>& v) {
+  Scene scene = make_box_stack_scene(count, 0.5, mu);
+  for (int k = 0; k < count; ++k) {
+    RigidBody& b = scene.world.bodies[static_cast<std::size_t>(k)];
+    b.pose(1) += 1e-3 * (k + 1) + 4e-4 * k;
+    b.pose(2) += 0.004 * (k % 2 == 0 ? 1.0 : -1.0);
+    b.velocity = v[static_cast<std::size_t>(k)];
+  }
+  SimulatorSettings settings;
+  settings.dt = kDt;
+  return largest_island(scene.world, settings);
+}
+
+// A settled pile of `bodies` polygons (convex model) and its largest island.
+ContactSystem pile_island(int bodies, std::uint64_t seed, int steps) {
+  PileOptions o;
+  o.bodies = bodies;
+  o.seed = seed;
+  o.model = ContactModel::convex;
+  SimulatorSettings settings;
+  settings.model = ContactModel::convex;
+  Simulator sim = make_simulator(make_pile_scene(o), settings);
+  for (int k = 0; k < steps; ++k) sim.step();
+  return largest_island(sim.world(), sim.settings());
+}
+
+Vector noisy(const Vector& v, double scale, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector out = v;
+  for (Index i = 0; i < out.size(); ++i) out(i) += scale * u(rng);
+  return out;
+}
+
+// Target v̄ = the model's prediction (with v̄ = v*) plus noise.
+Vector target_near_solution(const ContactSystem& s, const ConvexStepLossSettings& settings) {
+  const StepLossResult r = convex_step_loss(s, s.v_star, kDt, settings);
+  EXPECT_TRUE(has_solution(r.status)) << r.message;
+  return noisy(r.v_next, 0.05, 7);
+}
+
+// A view of one data kind as an array of values, with the cotangent's matching array.
+struct Kind {
+  std::string name;
+  std::function<double*(ContactSystem&)> data;
+  std::function<const double*(const ContactSystemCotangent&)> grad;
+  std::function<Index(const ContactSystem&)> size;
+};
+
+std::vector<Kind> kinds() {
+  return {
+      {"Jn", [](ContactSystem& s) { return s.Jn.valuePtr(); },
+       [](const ContactSystemCotangent& g) { return g.Jn.valuePtr(); },
+       [](const ContactSystem& s) { return static_cast<Index>(s.Jn.nonZeros()); }},
+      {"Jt", [](ContactSystem& s) { return s.Jt.valuePtr(); },
+       [](const ContactSystemCotangent& g) { return g.Jt.valuePtr(); },
+       [](const ContactSystem& s) { return static_cast<Index>(s.Jt.nonZeros()); }},
+      {"phi", [](ContactSystem& s) { return s.phi.data(); },
+       [](const ContactSystemCotangent& g) { return g.phi.data(); },
+       [](const ContactSystem& s) { return s.num_contacts(); }},
+      {"mu", [](ContactSystem& s) { return s.mu.data(); }, [](const ContactSystemCotangent& g) { return g.mu.data(); },
+       [](const ContactSystem& s) { return s.num_friction(); }},
+      {"minv", [](ContactSystem& s) { return s.minv.data(); },
+       [](const ContactSystemCotangent& g) { return g.minv.data(); },
+       [](const ContactSystem& s) { return s.num_dofs(); }},
+      {"v_star", [](ContactSystem& s) { return s.v_star.data(); },
+       [](const ContactSystemCotangent& g) { return g.v_star.data(); },
+       [](const ContactSystem& s) { return s.num_dofs(); }},
+  };
+}
+
+// Finite differences of ℓ against the cotangent, entry by entry (every `stride`-th entry
+// of each kind) of `other` if given, else of the cotangent `settings` give. With ℓ± =
+// ℓ(x ± h) by `settings`, d± the one-sided differences and the denominator
+// den = max(|an|, floor·max|an of the kind|, 1e-4), an entry passes when
+//   smooth: |(ℓ+ − ℓ−)/2h − an| ≤ 1e-5·den, or
+//   kink:   |d+ − d−| > 1e-4·den (a jump of the derivative, measured) and an lies in
+//           [min(d±), max(d±)] ± 1e-5·den (the interior point's gradient interpolates the
+//           one-sided derivatives there, qp_solver.hpp). When `other` (another
+//           formulation's cotangent) is checked, its entries at a measured jump are only
+//           counted: its interior point may pick another element of the generalized
+//           gradient than the one-sided derivatives along this coordinate bracket.
+// Returns the number of kinks; the caller bounds it. Gaps within 10·h of 0 (the kink of
+// max(φ, 0)) are skipped.
+int check_gradient(const ContactSystem& s0, const Vector& target, const ConvexStepLossSettings& settings,
+                   const std::string& label, Index max_per_kind = 1 << 30, double floor = 1e-3,
+                   const ContactSystemCotangent* other = nullptr) {
+  const StepLossResult r0 = convex_step_loss(s0, target, kDt, settings);
+  EXPECT_TRUE(has_solution(r0.status)) << label << ": " << r0.message;
+  if (!has_solution(r0.status)) return 0;
+  const ContactSystemCotangent& grad = other ? *other : r0.grad;
+  EXPECT_EQ(grad.Jn.nonZeros(), s0.Jn.nonZeros());
+  EXPECT_EQ(grad.Jt.nonZeros(), s0.Jt.nonZeros());
+  int kinks_total = 0;
+  for (const Kind& kind : kinds()) {
+    ContactSystem s = s0;
+    const Index n = kind.size(s);
+    const double* an = kind.grad(grad);
+    double scale = 0.0;
+    for (Index i = 0; i < n; ++i) scale = std::max(scale, std::abs(an[i]));
+    const Index stride = std::max<Index>(1, n / max_per_kind);
+    double worst = 0.0;
+    int checked = 0, kinks = 0, failed = 0, outside = 0;
+    for (Index i = 0; i < n; i += stride) {
+      double* x = kind.data(s) + i;
+      const double x0 = *x, h = 1e-6 * std::max(1.0, std::abs(x0));
+      if (kind.name == "phi" && std::abs(x0) < 10.0 * h) continue;
+      *x = x0 + h;
+      const StepLossResult rp = convex_step_loss(s, target, kDt, settings);
+      *x = x0 - h;
+      const StepLossResult rm = convex_step_loss(s, target, kDt, settings);
+      *x = x0;
+      EXPECT_TRUE(has_solution(rp.status) && has_solution(rm.status)) << label << " " << kind.name << i;
+      const double fd = (rp.loss - rm.loss) / (2.0 * h);
+      const double dp = (rp.loss - r0.loss) / h, dm = (r0.loss - rm.loss) / h;
+      const double den = std::max({std::abs(an[i]), floor * scale, 1e-4});
+      const double err = std::abs(fd - an[i]) / den;
+      const bool smooth = err <= 1e-5;
+      const bool jump = std::abs(dp - dm) > 1e-4 * den;
+      const bool kink =
+          !smooth && jump && an[i] >= std::min(dp, dm) - 1e-5 * den && an[i] <= std::max(dp, dm) + 1e-5 * den;
+      ++checked;
+      if (smooth) worst = std::max(worst, err);
+      if (kink) ++kinks;
+      if (!smooth && !kink && jump && other) {  // a kink, another form's element: counted only
+        ++outside;
+        continue;
+      }
+      if (!smooth && !kink) {
+        ++failed;
+        ADD_FAILURE() << label << " " << kind.name << "[" << i << "]: central " << fd << ", one-sided " << dm << " / "
+                      << dp << ", analytic " << an[i] << " (scale " << scale << ")";
+      }
+    }
+    kinks_total += kinks;
+    std::printf("%-28s %-6s %4d checked, max|grad| %.3e, worst smooth rel. error %.2e, kinks %d (+%d outside "
+                "the one-sided bracket), failed %d\n",
+                label.c_str(), kind.name.c_str(), checked, scale, worst, kinks, outside, failed);
+    kinks_total += outside;
+  }
+  return kinks_total;
+}
+
+// Same loss and gradient from the dual and the lifted formulation.
+void expect_formulations_agree(const ContactSystem& s, const Vector& target, double w, const std::string& label) {
+  const StepLossResult d = convex_step_loss(s, target, kDt, tight(ConvexFormulation::dual, w));
+  const StepLossResult l = convex_step_loss(s, target, kDt, tight(ConvexFormulation::lifted, w));
+  ASSERT_TRUE(has_solution(d.status) && has_solution(l.status)) << d.message << " / " << l.message;
+  EXPECT_NEAR(d.loss, l.loss, 1e-8 * std::max(1.0, d.loss)) << label;
+  EXPECT_LE((d.v_next - l.v_next).lpNorm<Eigen::Infinity>(), 1e-7) << label;
+  for (const Kind& kind : kinds()) {
+    const Index n = kind.size(s);
+    const double *a = kind.grad(d.grad), *b = kind.grad(l.grad);
+    double diff = 0.0, scale = 0.0;
+    for (Index i = 0; i < n; ++i) diff = std::max(diff, std::abs(a[i] - b[i])), scale = std::max(scale, std::abs(a[i]));
+    EXPECT_LE(diff, 5e-6 * std::max(scale, 1e-4)) << label << " " << kind.name << " (scale " << scale << ")";
+    std::printf("%-28s %-6s dual vs lifted: max|diff| / max|grad| = %.2e\n", label.c_str(), kind.name.c_str(),
+                diff / std::max(scale, 1e-300));
+  }
+}
+
+struct NamedIsland {
+  std::string name;
+  ContactSystem s;
+};
+
+std::vector<NamedIsland> hand_made() {
+  return {{"box on the ground", boxes(1, 0.5, {Vec3(0.02, -0.1, 0.05)})},
+          {"two stacked boxes", boxes(2, 0.5, {Vec3(0.01, -0.1, 0.02), Vec3(-0.02, -0.2, -0.03)})},
+          {"box sliding", boxes(1, 0.3, {Vec3(2.0, -0.05, 0.0)})}};
+}
+
+TEST(StepLossConvex, ZeroDeviationForwardIsTheConvexModel) {
+  std::vector<NamedIsland> islands = hand_made();
+  islands.push_back({"pile", pile_island(20, 3, 150)});
+  for (const NamedIsland& is : islands)
+    for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
+      ConvexStepLossSettings settings = tight(form, 0.0);
+      settings.qp.eps_abs = 1e-10;
+      const Vector target = noisy(is.s.v_star, 0.1, 3);
+      const StepLossResult r = convex_step_loss(is.s, target, kDt, settings);
+      const ContactSolution m = solve_convex_model(is.s, kDt, settings.qp, settings.rho, form);
+      ASSERT_TRUE(has_solution(r.status)) << is.name << ": " << r.message;
+      ASSERT_TRUE(has_solution(m.status)) << is.name << ": " << m.message;
+      EXPECT_LE((r.v_next - m.v_next).lpNorm<Eigen::Infinity>(), 1e-7) << is.name << " " << to_string(r.status) << " " << to_string(m.status) << " " << m.residual;
+      EXPECT_NEAR(r.loss, (m.v_next - target).squaredNorm(), 1e-7) << is.name;
+      EXPECT_GT((r.v_next - is.s.v_star).norm(), 1e-3) << is.name << ": contacts must act";
+    }
+}
+
+TEST(StepLossConvex, HandMadeIslandsFiniteDifferences) {
+  for (const NamedIsland& is : hand_made()) {
+    ASSERT_GT(is.s.num_friction(), 0) << is.name;
+    for (double w : {1.0, 0.0})
+      for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
+        const ConvexStepLossSettings settings = tight(form, w);
+        const Vector target = target_near_solution(is.s, settings);
+        const std::string label =
+            is.name + (form == ConvexFormulation::dual ? " dual" : " lifted") + " w=" + std::to_string(int(w));
+        check_gradient(is.s, target, settings, label);
+        if (form == ConvexFormulation::dual) expect_formulations_agree(is.s, target, w, label);
+      }
+  }
+}
+
+// A settled pile is degenerate: more active contact rows (non-penetration and sticking)
+// than degrees of freedom, so λt is not unique and ℓ has kinks in the data that move the
+// rows (Jn, Jt, μ); the interior point's gradient is then one element between the one-sided
+// derivatives. The dual form's forward stalls there within 1e3·eps (solved_inaccurate,
+// ℓ accurate to ~1e-9, too noisy for differences with h = 1e-6), so both cotangents are
+// checked against the differences of the lifted form's ℓ (the same function to the QP
+// tolerance). Measured on this island (bench numbers in the report of the change): relative
+// errors ≤ 1e-5 on entries ≥ 0.2·max of their kind and ≤ 2e-6·max below that (floor 0.2).
+TEST(StepLossConvex, PileIslandFiniteDifferences) {
+  const ContactSystem s = pile_island(20, 3, 150);
+  std::printf("pile island: %d bodies, %d contacts, %d friction rows\n", static_cast<int>(s.bodies.size()),
+              static_cast<int>(s.num_contacts()), static_cast<int>(s.num_friction()));
+  ASSERT_GE(s.num_contacts(), 60);
+  const ConvexStepLossSettings lifted = tight(ConvexFormulation::lifted, 1.0, 1e-10);
+  const Vector target = target_near_solution(s, lifted);
+  const StepLossResult dual = convex_step_loss(s, target, kDt, tight(ConvexFormulation::dual, 1.0, 1e-10));
+  ASSERT_TRUE(has_solution(dual.status)) << dual.message;
+  const int kinks_lifted = check_gradient(s, target, lifted, "pile lifted", 40, 0.2);
+  const int kinks_dual = check_gradient(s, target, lifted, "pile dual (lifted fd)", 40, 0.2, &dual.grad);
+  std::printf("pile: kinks met: lifted %d, dual %d\n", kinks_lifted, kinks_dual);
+}
+
+TEST(StepLossConvex, BadInputThrows) {
+  const ContactSystem s = boxes(1, 0.5, {Vec3(0.0, -0.1, 0.0)});
+  ConvexStepLossSettings settings;
+  EXPECT_THROW(convex_step_loss(s, Vector::Zero(2), kDt, settings), InputError);
+  EXPECT_THROW(convex_step_loss(s, s.v_star, -1.0, settings), InputError);
+  ContactSystem bad = s;
+  bad.minv(0) = 0.0;
+  EXPECT_THROW(convex_step_loss(bad, s.v_star, kDt, settings), InputError);
+  bad = s;
+  bad.phi(0) = std::nan("");
+  EXPECT_THROW(convex_step_loss(bad, s.v_star, kDt, settings), InputError);
+  settings.deviation = -1.0;
+  EXPECT_NE(settings.validation_error().find("deviation"), std::string::npos);
+  EXPECT_THROW(convex_step_loss(s, s.v_star, kDt, settings), InputError);
+  settings = ConvexStepLossSettings{};
+  settings.rho = std::nan("");
+  EXPECT_NE(settings.validation_error().find("rho"), std::string::npos);
+}
+
+TEST(StepLossConvex, NoApproachingContactIsFree) {
+  const ContactSystem s = boxes(1, 0.5, {Vec3(0.0, 1.0, 0.0)});  // moving away from the ground
+  const Vector target = noisy(s.v_star, 0.1, 5);
+  const StepLossResult r = convex_step_loss(s, target, kDt, ConvexStepLossSettings{});
+  EXPECT_EQ(r.status, ContactStatus::solved);
+  EXPECT_EQ(r.v_next, s.v_star);
+  EXPECT_NEAR(r.loss, (s.v_star - target).squaredNorm(), 1e-15);
+  EXPECT_LE((r.grad.v_star - 2.0 * (s.v_star - target)).norm(), 1e-15);
+  EXPECT_EQ(r.grad.phi.norm(), 0.0);
+}
+
+// Forward + backward times, dual vs lifted, on islands of ~60, ~600 and ~2000 contacts.
+TEST(StepLossConvex, DISABLED_Timing) {
+  for (int bodies : {20, 200, 700}) {
+    const ContactSystem s = pile_island(bodies, 3, 150);
+    for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
+      ConvexStepLossSettings settings;
+      settings.formulation = form;
+      const Vector target = noisy(s.v_star, 0.05, 1);
+      ConvexStepLossTimes t;
+      const auto t0 = std::chrono::steady_clock::now();
+      const StepLossResult r = convex_step_loss(s, target, kDt, settings, &t);
+      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("bodies %4d contacts %5d friction %5d %-6s status %s work %ld: assembly %.4f s, solve %.4f s, "
+                  "backward %.4f s, total %.4f s\n",
+                  static_cast<int>(s.bodies.size()), static_cast<int>(s.num_contacts()),
+                  static_cast<int>(s.num_friction()), form == ConvexFormulation::dual ? "dual" : "lifted",
+                  to_string(r.status), r.work, t.assembly, t.solve, t.backward, total);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace lcprelax::learn

@@ -1,0 +1,321 @@
+// The dual-form relaxed loss of one island (learn/step_loss_relaxed_dual.hpp):
+// (1) on a polygon on the ground (one body, two contacts) the loss and ∂ℓ/∂θ equal
+//     polygon_relaxed_loss's (the polygon is an instance of the scene path);
+// (2) central differences of ℓ against every entry of the cotangent (Jn, Jt on their
+//     patterns, φ, μ, M⁻¹, v*) on two stacked boxes and on a ≥ 60-contact island of a
+//     20-body learning pile, relative error ≤ 1e-5 away from kinks (h and h/2 compared);
+// (3) bias: at the true data (target = the lcp model's own v⁺) the dual loss against the
+//     lifted relaxed_step_loss on the same islands, with the shift δ chosen (printed).
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/learn/polygon_losses.hpp>
+#include <lcprelax/learn/polygon_lcp.hpp>
+#include <lcprelax/learn/scene_dataset.hpp>
+#include <lcprelax/learn/step_loss_relaxed.hpp>
+#include <lcprelax/learn/step_loss_relaxed_dual.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/models/simulator.hpp>
+#include <lcprelax/scenes/pile_scene.hpp>
+
+#include "learn_polygon_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+
+namespace lcprelax::learn {
+namespace {
+
+constexpr double kDt = 1e-2;
+
+RelaxedDualStepLossSettings tight() {
+  RelaxedDualStepLossSettings st;
+  st.qp.eps_abs = 1e-12;
+  return st;
+}
+
+ContactSystem largest_island(const World& world, const SimulatorSettings& settings,
+                             const std::vector<Vec3>& applied = {}) {
+  const StepContacts sc = find_step_contacts(world, settings, applied);
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < sc.islands.size(); ++i)
+    if (sc.islands[i].contacts.size() > sc.islands[best].contacts.size()) best = i;
+  EXPECT_FALSE(sc.islands.empty());
+  return assemble_contact_system(world, sc.contacts, sc.islands[best], settings.dt, applied);
+}
+
+ContactSystem box_stack(int boxes, double mu) {
+  const Scene scene = make_box_stack_scene(boxes, 0.2, mu);
+  return largest_island(scene.world, scene.settings);
+}
+
+// The largest island of the last transition's state of a 20-body learning pile.
+const ContactSystem& pile_island() {
+  static const ContactSystem s = [] {
+    LearningPileOptions po;
+    po.bodies = 20;
+    po.classes = 4;
+    SceneDatasetSettings ds;
+    ds.steps = 90;
+    ds.drop_without_contact = false;
+    const SceneDataset data = generate_scene_dataset(make_learning_pile(po), ds);
+    World world = data.scene.world;
+    const SceneTransition& t = data.transitions.back();
+    for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+      world.bodies[b].pose = t.pose[b];
+      world.bodies[b].velocity = t.velocity[b];
+    }
+    return largest_island(world, data.scene.settings, t.applied);
+  }();
+  return s;
+}
+
+Vector lcp_prediction(const ContactSystem& s) {
+  const ContactSolution sol = solve_lcp_model(s, kDt, LemkeSettings{});
+  EXPECT_TRUE(has_solution(sol.status)) << sol.message;
+  return sol.v_next;
+}
+
+Vector noisy_target(const ContactSystem& s, std::uint64_t seed, double size) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector t = lcp_prediction(s);
+  for (Index k = 0; k < t.size(); ++k) t(k) += size * u(rng);
+  return t;
+}
+
+// fn(entry of s, the cotangent's entry, kind) for every data entry.
+void for_each_entry(ContactSystem& s, const ContactSystemCotangent& g,
+                    const std::function<void(double&, double, const char*)>& fn) {
+  for (Index j = 0; j < s.Jn.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) fn(it.valueRef(), g.Jn.coeff(it.row(), j), "Jn");
+  for (Index j = 0; j < s.Jt.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(s.Jt, j); it; ++it) fn(it.valueRef(), g.Jt.coeff(it.row(), j), "Jt");
+  for (Index c = 0; c < s.phi.size(); ++c) fn(s.phi(c), g.phi(c), "phi");
+  for (Index f = 0; f < s.mu.size(); ++f) fn(s.mu(f), g.mu(f), "mu");
+  for (Index k = 0; k < s.minv.size(); ++k) fn(s.minv(k), g.minv(k), "minv");
+  for (Index k = 0; k < s.v_star.size(); ++k) fn(s.v_star(k), g.v_star(k), "v_star");
+}
+
+// Central differences at h against every cotangent entry; where they disagree, again at
+// h/2: a kink (active set or shift exponent changing within ±h) shows as fd(h) ≠ fd(h/2)
+// beyond the O(h²) truncation, and is counted, not failed (at most 5% of the entries).
+void check_gradient(ContactSystem s, const Vector& target, const char* name) {
+  RelaxedDualStepLossWorkspace ws(tight());
+  const StepLossResult r = ws.evaluate(s, target, kDt);
+  ASSERT_EQ(r.status, ContactStatus::solved) << r.message;
+  RelaxedDualStepLossWorkspace probe(tight());
+  double gmax = 0.0;
+  for_each_entry(s, r.grad, [&](double&, double g, const char*) { gmax = std::max(gmax, std::abs(g)); });
+  const double floor = 1e-6 * gmax;
+  double worst = 0.0;
+  int entries = 0, kinks = 0;
+  auto fd_at = [&](double& x, double h) {
+    const double x0 = x;
+    x = x0 + h;
+    const StepLossResult rp = probe.evaluate(s, target, kDt);
+    x = x0 - h;
+    const StepLossResult rm = probe.evaluate(s, target, kDt);
+    x = x0;
+    EXPECT_TRUE(has_solution(rp.status) && has_solution(rm.status));
+    EXPECT_EQ(probe.last().shift, ws.last().shift);
+    return (rp.loss - rm.loss) / (2 * h);
+  };
+  for_each_entry(s, r.grad, [&](double& x, double g, const char* kind) {
+    ++entries;
+    const double h = 1e-5 * std::max(1.0, std::abs(x));
+    const double fd = fd_at(x, h);
+    const double err = std::abs(fd - g) / (std::max(std::abs(fd), std::abs(g)) + floor);
+    if (err <= 1e-5) {
+      worst = std::max(worst, err);
+      return;
+    }
+    const double fd2 = fd_at(x, 0.5 * h);
+    const double err2 = std::abs(fd2 - g) / (std::max(std::abs(fd2), std::abs(g)) + floor);
+    const double jump = std::abs(fd - fd2) / (std::max(std::abs(fd), std::abs(fd2)) + floor);
+    if (jump > 1e-5) {
+      ++kinks;
+      std::printf("  %s: kink at a %s entry (fd(h) %.9e, fd(h/2) %.9e, cotangent %.9e)\n", name, kind, fd, fd2, g);
+      return;
+    }
+    worst = std::max(worst, err2);
+    EXPECT_LE(err2, 1e-5) << name << " " << kind << " value " << x << ": fd " << fd2 << " vs " << g;
+  });
+  EXPECT_LE(kinks, entries / 20) << name;
+  std::printf("%s: %d entries, worst relative error %.2e, %d on kinks, shift %.1e, loss %.6e\n", name, entries, worst,
+              kinks, ws.last().shift, r.loss);
+}
+
+// (1) A polygon sample (tests/learn_polygon_loss_gradient_test.cpp's quadrilateral on a
+// tilted raised ground, two contacts) as a one-body island.
+PolygonTransition sample_near_ground(const PolygonModel& m, const Vec3& v) {
+  PolygonTransition s;
+  const HalfPlane g = ground_half_plane(m.ground_height, m.ground_angle);
+  const double theta = m.ground_angle + 0.004;
+  s.q = Vec3(0.1, 0.0, theta);
+  const Vec2 b = m.shape.vertices[1];
+  const double c = std::cos(theta), sn = std::sin(theta);
+  const Vec2 rb(c * b.x() - sn * b.y(), sn * b.x() + c * b.y());
+  s.q.y() = (g.offset - 0.001 - g.normal.x() * (s.q.x() + rb.x())) / g.normal.y() - rb.y();
+  s.v = v;
+  s.u = Vec3(2.0, -3.0, 0.15);
+  return s;
+}
+
+double inner(const ContactSystemCotangent& g, const PolygonContactData& t) {
+  double sum = g.phi.dot(t.phi) + g.mu.dot(t.mu) + g.minv.dot(t.minv) + g.v_star.dot(t.v_star);
+  sum += pattern_inner(g.Jn, t.Jn) + pattern_inner(g.Jt, t.Jt);
+  return sum;
+}
+
+TEST(StepLossRelaxedDual, EqualsPolygonRelaxedLoss) {
+  const PolygonModel model = test::quad_model();
+  PolygonDataset dataset;
+  dataset.dt = kDt;
+  dataset.margin = 0.01;
+  // Sliding and spinning; slow (nearly sticking); a target far off.
+  const Vec3 velocities[] = {Vec3(0.8, -0.7, 1.3), Vec3(0.02, -0.05, 0.01), Vec3(-0.4, -0.2, -0.6)};
+  const Vec3 offsets[] = {Vec3(0.05, -0.03, 0.2), Vec3(0.01, 0.0, -0.02), Vec3(-0.3, 0.4, 1.0)};
+  for (int k = 0; k < 3; ++k) {
+    const PolygonTransition sample = sample_near_ground(model, velocities[k]);
+    const std::vector<int> active = polygon_active_vertices(model, sample, dataset);
+    ASSERT_EQ(active.size(), 2u);
+    PolygonAssembly a;
+    assemble_polygon(model, active, sample, dataset, a);
+    const ContactSystem s = to_contact_system(a.value);
+    ASSERT_EQ(s.Jn.nonZeros(), 6);  // full rows: the tangents' entries all have a slot
+    ASSERT_EQ(s.Jt.nonZeros(), 6);
+    const Vector target = lcp_prediction(s) + Vector(offsets[k]);
+    PolygonLossSettings ps;
+    ps.qp.eps_abs = 1e-12;
+    ps.warm_start = true;  // a fresh PolygonWarmStart: no warm start is used; it records the result
+    RelaxedLcpSolver solver(ps.relaxed, ps.qp);
+    PolygonWarmStart warm;
+    PolygonLossTimes times;
+    const SampleResult pr = polygon_relaxed_loss(a, Vec3(target), kDt, ps, solver, warm, times);
+    ASSERT_TRUE(pr.ok) << pr.message;
+    RelaxedDualStepLossSettings st;
+    st.qp = ps.qp;
+    RelaxedDualStepLossWorkspace ws(st);
+    const StepLossResult r = ws.evaluate(s, target, kDt);
+    ASSERT_EQ(r.status, ContactStatus::solved) << r.message;
+    const double loss_err = std::abs(r.loss - pr.loss) / std::abs(pr.loss);
+    double grad_err = 0.0;
+    const double gscale = pr.gradient.cwiseAbs().maxCoeff();
+    for (std::size_t p = 0; p < a.tangent.size(); ++p) {
+      const double g = inner(r.grad, a.tangent[p]);
+      grad_err = std::max(grad_err, std::abs(g - pr.gradient(static_cast<Index>(p))) / gscale);
+    }
+    std::printf("polygon sample %d: loss %.12e (polygon %.12e), relative difference %.2e; max |Δ∂ℓ/∂θ| / "
+                "max|∂ℓ/∂θ| = %.2e over %zu parameters; shift %.1e (polygon %.1e)\n",
+                k, r.loss, pr.loss, loss_err, grad_err, a.tangent.size(), ws.last().shift, warm.relaxed.shift);
+    EXPECT_LE(loss_err, 1e-10);
+    EXPECT_LE(grad_err, 1e-10);
+  }
+}
+
+// (2) Central differences.
+TEST(StepLossRelaxedDual, TwoStackedBoxesMatchesCentralDifferences) {
+  ContactSystem s = box_stack(2, 0.3);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  s.v_star << 0.2, -0.2, 0.1, 1.0, -0.4, -0.3;
+  for (Index c = 0; c < s.num_contacts(); ++c) s.phi(c) = 1e-3 * (c + 1);
+  check_gradient(s, noisy_target(s, 3, 0.1), "two boxes");
+}
+
+TEST(StepLossRelaxedDual, BoxOnGroundMatchesCentralDifferences) {
+  ContactSystem s = box_stack(1, 0.5);
+  s.v_star << 0.8, -0.3, 0.4;
+  s.phi << 0.002, -0.001;
+  check_gradient(s, noisy_target(s, 1, 0.1), "box, sliding");
+  s.v_star << 0.05, -0.1, 0.0;  // nearly resting
+  check_gradient(s, noisy_target(s, 2, 0.1), "box, nearly resting");
+}
+
+TEST(StepLossRelaxedDual, PileIslandMatchesCentralDifferences) {
+  ContactSystem s = pile_island();
+  ASSERT_GE(s.num_contacts(), 60);
+  std::printf("pile island: %zu bodies, %d contacts, %d friction rows\n", s.bodies.size(),
+              static_cast<int>(s.num_contacts()), static_cast<int>(s.num_friction()));
+  // Gaps moved away from the kink of max(φ, 0) at 0 (a settled pile has φ ≈ 0).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (Index c = 0; c < s.num_contacts(); ++c) s.phi(c) = 1e-4 * (1.5 + u(rng));
+  check_gradient(s, noisy_target(s, 4, 0.05), "pile island");
+}
+
+// (3) Bias at the true data: the target is the lcp model's own v⁺.
+struct Losses {
+  double loss, dmu, shift;
+};
+
+Losses dual_at(const ContactSystem& s, const Vector& target) {
+  RelaxedDualStepLossWorkspace ws;
+  const StepLossResult r = ws.evaluate(s, target, kDt);
+  EXPECT_TRUE(has_solution(r.status)) << r.message;
+  return {r.loss, r.grad.mu.sum(), ws.last().shift};
+}
+
+Losses lifted_at(const ContactSystem& s, const Vector& target) {
+  RelaxedStepLossWorkspace ws;
+  const StepLossResult r = ws.evaluate(s, target, kDt);
+  EXPECT_TRUE(has_solution(r.status)) << r.message;
+  return {r.loss, r.grad.mu.sum(), ws.shifts().size() > 0 ? ws.shifts().maxCoeff() : 0.0};
+}
+
+ContactSystem scaled_mu(ContactSystem s, double factor) {
+  s.mu *= factor;
+  return s;
+}
+
+TEST(StepLossRelaxedDual, SmallBiasAtTheTruth) {
+  ContactSystem box = box_stack(1, 0.5);
+  box.v_star << 0.8, -0.3, 0.4;
+  box.phi << 0.002, 0.001;
+  const std::pair<const char*, ContactSystem> islands[] = {
+      {"box sliding", box}, {"two boxes resting", box_stack(2, 0.3)}, {"pile island", pile_island()}};
+  for (const auto& [name, s] : islands) {
+    const Vector truth = lcp_prediction(s);
+    const Losses d = dual_at(s, truth), l = lifted_at(s, truth);
+    const Losses dp = dual_at(scaled_mu(s, 1.25), truth), dm = dual_at(scaled_mu(s, 0.75), truth);
+    const Losses lp = lifted_at(scaled_mu(s, 1.25), truth), lm = lifted_at(scaled_mu(s, 0.75), truth);
+    std::printf("%s (%d contacts, ‖v̄‖² %.3e): dual ℓ %.3e (δ %.0e, Σ∂ℓ/∂μ %.3e; μ·1.25: %.3e, μ·0.75: %.3e) | "
+                "lifted ℓ %.3e (max b_f %.2e, Σ∂ℓ/∂μ %.3e; μ·1.25: %.3e, μ·0.75: %.3e)\n",
+                name, static_cast<int>(s.num_contacts()), truth.squaredNorm(), d.loss, d.shift, d.dmu, dp.loss,
+                dm.loss, l.loss, l.shift, l.dmu, lp.loss, lm.loss);
+    EXPECT_LE(d.loss, l.loss) << name;
+  }
+}
+
+TEST(StepLossRelaxedDual, SettingsAndInputAreValidated) {
+  RelaxedDualStepLossSettings st;
+  EXPECT_TRUE(st.validation_error().empty());
+  EXPECT_EQ(st.relaxed.nonconvex, NonconvexPolicy::shift);
+  st.relaxed.a1 = 0.0;
+  EXPECT_NE(st.validation_error().find("a1"), std::string::npos);
+  EXPECT_THROW(RelaxedDualStepLossWorkspace{st}, InputError);
+  st = RelaxedDualStepLossSettings();
+  st.relaxed.max_dissipation = MaxDissipation::qp;
+  EXPECT_NE(st.validation_error().find("max_dissipation"), std::string::npos);
+  ContactSystem s = box_stack(1, 0.3);
+  EXPECT_THROW(relaxed_dual_step_loss(s, Vector::Zero(4), kDt), InputError);
+  EXPECT_THROW(relaxed_dual_step_loss(s, Vector::Zero(3), 0.0), InputError);
+  s.minv(2) = -1.0;
+  EXPECT_THROW(relaxed_dual_step_loss(s, Vector::Zero(3), kDt), InputError);
+}
+
+TEST(StepLossRelaxedDual, FailedSolveIsReported) {
+  const ContactSystem s = box_stack(2, 0.3);
+  RelaxedDualStepLossSettings st;
+  st.qp.max_iter = 1;
+  const StepLossResult r = relaxed_dual_step_loss(s, noisy_target(s, 7, 0.1), kDt, st);
+  EXPECT_EQ(r.status, ContactStatus::failed);
+  EXPECT_TRUE(std::isnan(r.loss));
+  EXPECT_FALSE(r.message.empty());
+}
+
+}  // namespace
+}  // namespace lcprelax::learn

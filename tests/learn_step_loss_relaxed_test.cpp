@@ -1,0 +1,295 @@
+// The sparse lifted relaxed loss of one island (learn/step_loss_relaxed.hpp): central
+// finite differences of ℓ against every entry of the envelope-theorem cotangent and along
+// random directions (box on the ground, two stacked boxes, an island of a settled 20-body
+// pile), the same directional derivatives by the QP adjoint (QpSolver::backward), the
+// workspace's update path, the polygon relaxed loss on one-body islands, and statuses.
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/kkt/qp_solver.hpp>
+#include <lcprelax/learn/polygon_losses.hpp>
+#include <lcprelax/learn/step_loss_relaxed.hpp>
+#include <lcprelax/models/simulator.hpp>
+#include <lcprelax/scenes/pile_scene.hpp>
+#include <lcprelax/scenes/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <random>
+
+namespace lcprelax::learn {
+namespace {
+
+constexpr double kDt = 1e-2;
+
+RelaxedStepLossSettings tight() {
+  RelaxedStepLossSettings st;
+  st.qp.eps_abs = 1e-12;
+  return st;
+}
+
+// For the finite-difference checks: ε = 1e-3 (relaxed_lcp.hpp's default, the seeds' value).
+// With the polygon's ε = 1e-6 the weakly regularized unknowns (β⁻ of a sticking contact,
+// λn of redundant contacts) put an active-set change within 1e-7..1e-5 of typical data,
+// where the value function's curvature is O(1/ε): central differences with h ≥ 1e-6 then
+// straddle it and disagree with the (correct) one-point derivative by up to 1e-2 relative.
+RelaxedStepLossSettings fd_settings() {
+  RelaxedStepLossSettings st = tight();
+  st.regularization = 1e-3;
+  return st;
+}
+
+ContactSystem largest_island(const World& world, const SimulatorSettings& settings) {
+  const StepContacts sc = find_step_contacts(world, settings);
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < sc.islands.size(); ++i)
+    if (sc.islands[i].contacts.size() > sc.islands[best].contacts.size()) best = i;
+  EXPECT_FALSE(sc.islands.empty());
+  return assemble_contact_system(world, sc.contacts, sc.islands[best], settings.dt);
+}
+
+ContactSystem box_stack(int boxes, double mu) {
+  const Scene scene = make_box_stack_scene(boxes, 0.2, mu);
+  return largest_island(scene.world, scene.settings);
+}
+
+const ContactSystem& pile_island() {
+  static const ContactSystem s = [] {
+    PileOptions o;
+    o.bodies = 20;
+    o.seed = 3;
+    const Scene scene = make_pile_scene(o);
+    Simulator sim = make_simulator(scene);
+    for (int k = 0; k < 400; ++k) sim.step();
+    return largest_island(sim.world(), sim.settings());
+  }();
+  return s;
+}
+
+void for_each_entry(ContactSystem& s, const ContactSystemCotangent& g,
+                    const std::function<void(double&, double, const std::string&)>& fn) {
+  for (Index k = 0; k < s.Jn.nonZeros(); ++k) {
+    const Index col = std::upper_bound(s.Jn.outerIndexPtr(), s.Jn.outerIndexPtr() + s.Jn.cols() + 1, k) -
+                      s.Jn.outerIndexPtr() - 1;
+    fn(s.Jn.valuePtr()[k], g.Jn.coeff(s.Jn.innerIndexPtr()[k], col), "Jn");
+  }
+  for (Index k = 0; k < s.Jt.nonZeros(); ++k) {
+    const Index col = std::upper_bound(s.Jt.outerIndexPtr(), s.Jt.outerIndexPtr() + s.Jt.cols() + 1, k) -
+                      s.Jt.outerIndexPtr() - 1;
+    fn(s.Jt.valuePtr()[k], g.Jt.coeff(s.Jt.innerIndexPtr()[k], col), "Jt");
+  }
+  for (Index c = 0; c < s.phi.size(); ++c) fn(s.phi(c), g.phi(c), "phi");
+  for (Index f = 0; f < s.mu.size(); ++f) fn(s.mu(f), g.mu(f), "mu");
+  for (Index k = 0; k < s.minv.size(); ++k) fn(s.minv(k), g.minv(k), "minv");
+  for (Index k = 0; k < s.v_star.size(); ++k) fn(s.v_star(k), g.v_star(k), "v_star");
+}
+
+Vector noisy_target(const ContactSystem& s, std::uint64_t seed, double size) {
+  const ContactSolution sol = solve_lcp_model(s, kDt, LemkeSettings{});
+  EXPECT_TRUE(has_solution(sol.status));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector t = sol.v_next;
+  for (Index k = 0; k < t.size(); ++k) t(k) += size * u(rng);
+  return t;
+}
+
+// Random direction in data space, scaled by each entry's magnitude.
+std::vector<double> random_direction(ContactSystem& s, const ContactSystemCotangent& g, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> dir;
+  for_each_entry(s, g, [&](double& x, double, const std::string&) { dir.push_back(u(rng) * std::max(0.1, std::abs(x))); });
+  return dir;
+}
+
+ContactSystem moved(ContactSystem s, const ContactSystemCotangent& g, const std::vector<double>& dir, double h) {
+  std::size_t i = 0;
+  for_each_entry(s, g, [&](double& x, double, const std::string&) { x += h * dir[i++]; });
+  return s;
+}
+
+// Finite differences (every entry if asked; random directions always) and the adjoint check.
+void check_gradient(ContactSystem s, const Vector& target, std::uint64_t seed, int stride = 1,
+                    const RelaxedStepLossSettings& settings = fd_settings()) {
+  RelaxedStepLossWorkspace ws(settings);
+  const StepLossResult r = ws.evaluate(s, target, kDt);
+  ASSERT_EQ(r.status, ContactStatus::solved) << r.message;
+  RelaxedStepLossWorkspace probe(settings);
+  auto loss = [&](const ContactSystem& p) {
+    const StepLossResult rp = probe.evaluate(p, target, kDt);
+    EXPECT_EQ(rp.status, ContactStatus::solved) << rp.message;
+    return rp.loss;
+  };
+  double gmax = 0.0;
+  for_each_entry(s, r.grad, [&](double&, double g, const std::string&) { gmax = std::max(gmax, std::abs(g)); });
+  const double floor = 1e-8 * gmax, h = 1e-6;
+  double worst = 0.0;
+  int index = 0;
+  for_each_entry(s, r.grad, [&](double& x, double g, const std::string& kind) {
+      if (index++ % stride != 0) return;
+      const double x0 = x, hx = h * std::max(1.0, std::abs(x0));
+      x = x0 + hx;
+      const double lp = loss(s);
+      x = x0 - hx;
+      const double lm = loss(s);
+      x = x0;
+      const double fd = (lp - lm) / (2 * hx);
+      const double err = std::abs(fd - g) / (std::max(std::abs(fd), std::abs(g)) + 1e3 * floor);
+      worst = std::max(worst, err);
+      EXPECT_LE(std::abs(fd - g), 1e-5 * std::max(std::abs(fd), std::abs(g)) + floor) << kind << " value " << x0 << ": fd " << fd << " vs " << g;
+    });
+  std::mt19937_64 rng(seed);
+  const QpProblem qp0 = relaxed_step_qp(s, target, kDt, settings);
+  QpSolver solver(settings.qp);
+  solver.setup(qp0);
+  const QpResult& res = solver.solve();
+  ASSERT_TRUE(has_solution(res.info.status));
+  const Vector x = res.x;
+  const SparseMatrix Pfull = SparseMatrix(qp0.P.selfadjointView<Eigen::Upper>());
+  const QpGradient qg = solver.backward(Pfull * x + qp0.q);
+  auto inner = [](const SparseMatrix& G, const SparseMatrix& D) {
+    double sum = 0.0;
+    for (Index j = 0; j < G.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(G, j); it; ++it) sum += it.value() * D.coeff(it.row(), j);
+    return sum;
+  };
+  for (int trial = 0; trial < 4; ++trial) {
+    const std::vector<double> dir = random_direction(s, r.grad, rng);
+    double dot = 0.0;
+    std::size_t i = 0;
+    for_each_entry(s, r.grad, [&](double&, double g, const std::string&) { dot += g * dir[i++]; });
+    const double fd = (loss(moved(s, r.grad, dir, h)) - loss(moved(s, r.grad, dir, -h))) / (2 * h);
+    EXPECT_LE(std::abs(fd - dot), 1e-5 * std::max(std::abs(fd), std::abs(dot)) + floor)
+        << "direction " << trial << ": fd " << fd << " vs " << dot;
+    // Adjoint: dℓ = ½xᵀdPx + dqᵀx + dr + ⟨∂ℓ/∂(P, q, A, G, l), d(P, q, A, G, l)⟩ with the
+    // QP's data derivative by central differences of the (smooth) assembly.
+    const double ha = 1e-6;
+    const QpProblem qpp = relaxed_step_qp(moved(s, r.grad, dir, ha), target, kDt, settings);
+    const QpProblem qpm = relaxed_step_qp(moved(s, r.grad, dir, -ha), target, kDt, settings);
+    const SparseMatrix dP = (qpp.P - qpm.P) / (2 * ha), dA = (qpp.A - qpm.A) / (2 * ha);
+    const SparseMatrix dG = (qpp.G - qpm.G) / (2 * ha);
+    const Vector dq = (qpp.q - qpm.q) / (2 * ha), dl = (qpp.l - qpm.l) / (2 * ha);
+    const double dr = (qpp.r - qpm.r) / (2 * ha);
+    const SparseMatrix dPfull = SparseMatrix(dP.selfadjointView<Eigen::Upper>());
+    const double adj = 0.5 * x.dot(dPfull * x) + dq.dot(x) + dr + inner(qg.dP, dP) + qg.dq.dot(dq) +
+                       inner(qg.dA, dA) + inner(qg.dG, dG) + qg.dl.dot(dl);
+    EXPECT_LE(std::abs(adj - dot), 1e-5 * std::max(std::abs(adj), std::abs(dot)) + floor)
+        << "adjoint, direction " << trial << ": " << adj << " vs envelope " << dot
+        << " (adjoint residual " << qg.adjoint_residual << ")";
+  }
+  ::testing::Test::RecordProperty("worst_relative_error", std::to_string(worst));
+  std::cout << "worst relative error " << worst << " (" << s.num_contacts() << " contacts)\n";
+}
+
+TEST(StepLossRelaxed, BoxOnGround) {
+  ContactSystem s = box_stack(1, 0.5);
+  ASSERT_EQ(s.num_contacts(), 2);
+  s.v_star << 0.8, -0.3, 0.4;
+  s.phi << 0.002, 0.001;
+  check_gradient(s, noisy_target(s, 1, 0.1), 11);
+  check_gradient(s, noisy_target(s, 1, 0.1), 11, 1, tight());  // the polygon's ε = 1e-6
+  s.v_star << 0.05, -0.1, 0.0;  // nearly resting
+  check_gradient(s, noisy_target(s, 2, 0.1), 12);
+}
+
+TEST(StepLossRelaxed, TwoStackedBoxes) {
+  ContactSystem s = box_stack(2, 0.3);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  s.v_star << 0.2, -0.2, 0.1, 1.0, -0.4, -0.3;
+  for (Index c = 0; c < s.num_contacts(); ++c) s.phi(c) = 1e-3 * (c + 1);
+  check_gradient(s, noisy_target(s, 3, 0.1), 13);
+}
+
+TEST(StepLossRelaxed, PileIsland) {
+  ContactSystem s = pile_island();
+  ASSERT_GE(s.num_contacts(), 60);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // Kicked, as in the hard test: random free velocities move the solution off the resting
+  // one, where many constraints are weakly active (kinks of the relaxed loss).
+  for (Index k = 0; k < s.v_star.size(); ++k) s.v_star(k) += 0.2 * u(rng);
+  // Gaps away from the kink of max(φ, 0) at 0 (a settled pile has φ ≈ 0).
+  for (Index c = 0; c < s.num_contacts(); ++c) s.phi(c) = 1e-4 * (1.5 + u(rng));
+  check_gradient(s, noisy_target(s, 4, 0.05), 14, 3);  // every third entry, all kinds
+}
+
+TEST(StepLossRelaxed, WorkspaceUpdateMatchesFreshSetup) {
+  ContactSystem s = box_stack(2, 0.3);
+  const Vector target = noisy_target(s, 5, 0.1);
+  RelaxedStepLossWorkspace ws(tight());
+  ws.evaluate(s, target, kDt);
+  s.v_star(0) += 0.1;
+  s.mu(0) = 0.4;
+  const StepLossResult a = ws.evaluate(s, target, kDt);
+  EXPECT_EQ(ws.setups(), 1);
+  EXPECT_EQ(ws.updates(), 1);
+  const StepLossResult b = relaxed_step_loss(s, target, kDt, tight());
+  ASSERT_EQ(a.status, ContactStatus::solved);
+  EXPECT_NEAR(a.loss, b.loss, 1e-9 * (1 + b.loss));
+  EXPECT_LE((a.grad.v_star - b.grad.v_star).norm(), 1e-6 * (1 + b.grad.v_star.norm()));
+  ASSERT_EQ(ws.shifts().size(), s.num_friction());
+  const double S = 1.0 / s.minv(0);  // contact 0 is the bottom box's, on the ground
+  EXPECT_NEAR(ws.shifts()(0), 0.1 * 0.4 * S, 1e-12 * S);
+}
+
+// One body on the ground: the lifted QP against polygon_relaxed_loss (the dense z-space QP).
+TEST(StepLossRelaxed, MatchesPolygonRelaxedLossWithoutFriction) {
+  for (double mu : {0.0, 0.5}) {
+    ContactSystem s = box_stack(1, 0.5);
+    s.v_star << 0.6, -0.3, 0.2;
+    s.phi << 0.002, 0.001;
+    s.mu.setConstant(mu);
+    const Vector target = noisy_target(s, 6, 0.1);
+    PolygonAssembly a;
+    a.vertices = {0, 1};
+    a.value.Jn = DenseMatrix(s.Jn);
+    a.value.Jt = DenseMatrix(s.Jt);
+    a.value.phi = s.phi;
+    a.value.mu = s.mu;
+    a.value.minv = s.minv;
+    a.value.v_star = s.v_star;
+    PolygonLossSettings ps;
+    ps.qp.eps_abs = 1e-12;
+    RelaxedLcpSolver solver(ps.relaxed, ps.qp);
+    PolygonWarmStart warm;
+    PolygonLossTimes times;
+    const SampleResult pr = polygon_relaxed_loss(a, Vec3(target), kDt, ps, solver, warm, times);
+    ASSERT_TRUE(pr.ok) << pr.message;
+    RelaxedStepLossWorkspace ws(tight());
+    const StepLossResult r = ws.evaluate(s, target, kDt);
+    ASSERT_EQ(r.status, ContactStatus::solved);
+    std::cout << "mu " << mu << ": polygon relaxed " << pr.loss << ", lifted step loss " << r.loss
+              << ", relative difference " << std::abs(pr.loss - r.loss) / pr.loss << " (polygon shift "
+              << warm.relaxed.shift << ", per-contact shifts " << ws.shifts().transpose() << ")\n";
+    if (mu == 0.0) {
+      EXPECT_NEAR(r.loss, pr.loss, 1e-8 * pr.loss);
+    }
+  }
+}
+
+TEST(StepLossRelaxed, FailedSolveIsReported) {
+  ContactSystem s = box_stack(2, 0.3);
+  RelaxedStepLossSettings st;
+  st.qp.max_iter = 1;
+  const StepLossResult r = relaxed_step_loss(s, noisy_target(s, 7, 0.1), kDt, st);
+  EXPECT_EQ(r.status, ContactStatus::failed);
+  EXPECT_TRUE(std::isnan(r.loss));
+  EXPECT_FALSE(r.message.empty());
+}
+
+TEST(StepLossRelaxed, SettingsAndInputAreValidated) {
+  RelaxedStepLossSettings st;
+  EXPECT_TRUE(st.validation_error().empty());
+  st.a1 = 0.0;
+  EXPECT_NE(st.validation_error().find("a1"), std::string::npos);
+  EXPECT_THROW(RelaxedStepLossWorkspace{st}, InputError);
+  ContactSystem s = box_stack(1, 0.3);
+  EXPECT_THROW(relaxed_step_loss(s, Vector::Zero(4), kDt), InputError);
+  s.minv(2) = -1.0;
+  EXPECT_THROW(relaxed_step_loss(s, Vector::Zero(3), kDt), InputError);
+}
+
+}  // namespace
+}  // namespace lcprelax::learn
