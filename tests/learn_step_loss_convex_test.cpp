@@ -2,8 +2,9 @@
 // models' solve_convex_model; central differences of ℓ against every entry of the
 // cotangent (Jn, Jt on their patterns, φ, μ, M⁻¹, v*) in the dual and the lifted
 // formulation, on hand-made islands and on one ≥ 60-contact island of a settled 20-body
-// pile; dual and lifted agree. DISABLED_Timing prints forward + backward times (no
-// assertion; run with --gtest_also_run_disabled_tests).
+// pile (≤ 40 entries per kind there, differences of the lifted form's ℓ for both
+// cotangents, kinks of the degenerate pile counted and bounded); dual and lifted agree on
+// the hand-made islands. Timings are measured by bench/run_learn_scene.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/step_loss_convex.hpp>
 #include <lcprelax/models/contact_step.hpp>
@@ -228,6 +229,7 @@ TEST(StepLossConvex, ZeroDeviationForwardIsTheConvexModel) {
     for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
       ConvexStepLossSettings settings = tight(form, 0.0);
       settings.qp.eps_abs = 1e-10;
+      settings.phase1_regularization = 0.0;  // the simulator's model exactly
       const Vector target = noisy(is.s.v_star, 0.1, 3);
       const StepLossResult r = convex_step_loss(is.s, target, kDt, settings);
       const ContactSolution m = solve_convex_model(is.s, kDt, settings.qp, settings.rho, form);
@@ -248,7 +250,7 @@ TEST(StepLossConvex, HandMadeIslandsFiniteDifferences) {
         const Vector target = target_near_solution(is.s, settings);
         const std::string label =
             is.name + (form == ConvexFormulation::dual ? " dual" : " lifted") + " w=" + std::to_string(int(w));
-        check_gradient(is.s, target, settings, label);
+        EXPECT_EQ(check_gradient(is.s, target, settings, label), 0) << label << ": no kink expected";
         if (form == ConvexFormulation::dual) expect_formulations_agree(is.s, target, w, label);
       }
   }
@@ -274,6 +276,19 @@ TEST(StepLossConvex, PileIslandFiniteDifferences) {
   const int kinks_lifted = check_gradient(s, target, lifted, "pile lifted", 40, 0.2);
   const int kinks_dual = check_gradient(s, target, lifted, "pile dual (lifted fd)", 40, 0.2, &dual.grad);
   std::printf("pile: kinks met: lifted %d, dual %d\n", kinks_lifted, kinks_dual);
+  EXPECT_LE(kinks_lifted, 20);  // measured: 5 of 323 entries (all Jt)
+  EXPECT_LE(kinks_dual, 20);
+}
+
+TEST(StepLossConvex, FrictionlessIslandFiniteDifferences) {  // μ = 0: no friction rows
+  const ContactSystem s = boxes(2, 0.0, {Vec3(0.3, -0.1, 0.02), Vec3(-0.2, -0.2, -0.03)});
+  ASSERT_EQ(s.num_friction(), 0);
+  for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
+    const ConvexStepLossSettings settings = tight(form);
+    const Vector target = target_near_solution(s, settings);
+    EXPECT_EQ(check_gradient(s, target, settings, "frictionless"), 0);
+    if (form == ConvexFormulation::dual) expect_formulations_agree(s, target, 1.0, "frictionless");
+  }
 }
 
 TEST(StepLossConvex, BadInputThrows) {
@@ -304,27 +319,6 @@ TEST(StepLossConvex, NoApproachingContactIsFree) {
   EXPECT_NEAR(r.loss, (s.v_star - target).squaredNorm(), 1e-15);
   EXPECT_LE((r.grad.v_star - 2.0 * (s.v_star - target)).norm(), 1e-15);
   EXPECT_EQ(r.grad.phi.norm(), 0.0);
-}
-
-// Forward + backward times, dual vs lifted, on islands of ~60, ~600 and ~2000 contacts.
-TEST(StepLossConvex, DISABLED_Timing) {
-  for (int bodies : {20, 200, 700}) {
-    const ContactSystem s = pile_island(bodies, 3, 150);
-    for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
-      ConvexStepLossSettings settings;
-      settings.formulation = form;
-      const Vector target = noisy(s.v_star, 0.05, 1);
-      ConvexStepLossTimes t;
-      const auto t0 = std::chrono::steady_clock::now();
-      const StepLossResult r = convex_step_loss(s, target, kDt, settings, &t);
-      const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("bodies %4d contacts %5d friction %5d %-6s status %s work %ld: assembly %.4f s, solve %.4f s, "
-                  "backward %.4f s, total %.4f s\n",
-                  static_cast<int>(s.bodies.size()), static_cast<int>(s.num_contacts()),
-                  static_cast<int>(s.num_friction()), form == ConvexFormulation::dual ? "dual" : "lifted",
-                  to_string(r.status), r.work, t.assembly, t.solve, t.backward, total);
-    }
-  }
 }
 
 }  // namespace

@@ -74,6 +74,8 @@ std::string ConvexStepLossSettings::validation_error() const {
   if (!qp_error.empty()) return "qp." + qp_error;
   if (!(rho >= 0.0) || !std::isfinite(rho)) return "rho: must be finite and >= 0";
   if (!(deviation >= 0.0) || !std::isfinite(deviation)) return "deviation: must be finite and >= 0";
+  if (!(phase1_regularization >= 0.0) || !std::isfinite(phase1_regularization))
+    return "phase1_regularization: must be finite and >= 0";
   return {};
 }
 
@@ -106,7 +108,7 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
     return r;
   }
   const detail::ConvexLossData data(s, target, dt, w, lifted);
-  const detail::ConvexLossQp p1 = detail::convex_loss_phase1(data);
+  const detail::ConvexLossQp p1 = detail::convex_loss_phase1(data, settings.phase1_regularization);
   detail::ConvexLossQp p2 = detail::convex_loss_phase2(data, rho);
   t.assembly = detail::since(t0);
 
@@ -174,7 +176,7 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   double adjoint = g2.adjoint_residual;
   if ((dl_dx1.array() != 0.0).any()) {  // else κ's bound is inactive and phase 1 contributes nothing
     const QpGradient g1 = s1.backward(dl_dx1);
-    pb.add_phase(1, p1, g1, rho);
+    pb.add_phase(1, p1, g1, settings.phase1_regularization);
     adjoint = std::max(adjoint, g1.adjoint_residual);
   }
   pb.finish(r.grad);

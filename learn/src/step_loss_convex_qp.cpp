@@ -86,7 +86,7 @@ ConvexLossData::ConvexLossData(const ContactSystem& system, const Vector& target
   }
 }
 
-ConvexLossQp convex_loss_phase1(const ConvexLossData& d) {
+ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r) {
   const ContactSystem& s = d.s;
   const Index nc = d.nc, nv = d.nv;
   ConvexLossQp out;
@@ -94,11 +94,14 @@ ConvexLossQp convex_loss_phase1(const ConvexLossData& d) {
   if (!d.lifted) {
     out.problem = QpProblem(nc);
     const SparseMatrix Wnn = d.W.topLeftCorner(nc, nc);
-    out.problem.P = upper((1.0 + d.w) * Wnn);
+    SparseMatrix P = (1.0 + d.w) * Wnn;
+    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += r * d.w_nn(i);
+    out.problem.P = upper(P);
   } else {  // x = (Δv, λn): ½(1+w)ΔvᵀMΔv, M Δv = Jnᵀλn
     out.problem = QpProblem(nv + nc);
     std::vector<Triplet> t;
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
+    for (Index i = 0; i < nc; ++i) t.emplace_back(nv + i, nv + i, r * d.w_nn(i));
     out.problem.P = from_triplets(nv + nc, nv + nc, t);
     lifted_equality(s, /*friction=*/false, out.problem);
     out.lambda_offset = nv;
@@ -206,10 +209,13 @@ double ConvexLossPullback::add_phase(int phase, const ConvexLossQp& qp, const Qp
       if (!d.lifted) {
         W_bar.coeffRef(i, j) += (1.0 + d.w) * v;
         if (phase == 2 && i == j && i < nc) add_rho(i, v);
+        if (phase == 1 && i == j) w_nn_bar(i) += rho * v;  // phase 1: ρ is the regularization r
       } else if (i == j && j < nv) {
         minv_bar(j) -= (1.0 + d.w) * v / (s.minv(j) * s.minv(j));
       } else if (i == j && phase == 2 && j - nv < nc) {
         add_rho(j - nv, v);
+      } else if (i == j && phase == 1) {
+        w_nn_bar(j - nv) += rho * v;  // phase 1: ρ is the regularization r
       }
     }
   // A (lifted): [M, −Jnᵀ, −Jtᵀ].

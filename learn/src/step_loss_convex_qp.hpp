@@ -31,7 +31,7 @@ struct ConvexLossQp {
   Index lambda_offset = 0;
 };
 
-ConvexLossQp convex_loss_phase1(const ConvexLossData& d);
+ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r);
 /// Phase 2 with u(nc) = +∞ (the caller sets the κ bound).
 ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho);
 
