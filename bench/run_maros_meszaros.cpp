@@ -2,7 +2,11 @@
 // side on every .qps file of a directory, at high accuracy (1e-9).
 //
 //   run_maros_meszaros DIR [--out results.csv] [--time-limit SEC] [--eps 1e-9]
-//                          [--clp PATH_TO_CLP | --no-clp]
+//                          [--clp PATH_TO_CLP | --no-clp] [--only NAME,NAME,...] [--verbose]
+//
+// --only runs the named problems (file stems) of DIR; --verbose prints the solver's
+// per-iteration log on stderr; --no-exact-bound-steps and --no-clean-bound-multipliers
+// switch off the QpSettings of those names (ablation).
 //
 // Success (qpbenchmark's "high accuracy" when eps = 1e-9):
 // - lcprelax: status solved and the primal residual, dual residual and duality gap it
@@ -52,6 +56,9 @@ struct Options {
   double eps = 1e-9;
   std::string clp = "clp";
   bool use_clp = true;
+  bool verbose = false;
+  bool exact_bound_steps = true, clean_bound_multipliers = true;
+  std::vector<std::string> only;  ///< file stems to run (empty: all)
 };
 
 struct Row {
@@ -70,7 +77,8 @@ struct Row {
 
 [[noreturn]] void usage(const std::string& error) {
   std::cerr << "error: " << error << "\nusage: run_maros_meszaros DIR [--out results.csv] [--time-limit SEC] "
-            << "[--eps 1e-9] [--clp PATH_TO_CLP | --no-clp]\n";
+            << "[--eps 1e-9] [--clp PATH_TO_CLP | --no-clp] [--only NAME,NAME,...] [--verbose]\n"
+            << "       [--no-exact-bound-steps] [--no-clean-bound-multipliers]\n";
   std::exit(2);
 }
 
@@ -88,6 +96,17 @@ Options parse_args(int argc, char** argv) {
       else if (a == "--eps") o.eps = std::stod(value());
       else if (a == "--clp") o.clp = value();
       else if (a == "--no-clp") o.use_clp = false;
+      else if (a == "--verbose") o.verbose = true;
+      else if (a == "--no-exact-bound-steps") o.exact_bound_steps = false;
+      else if (a == "--no-clean-bound-multipliers") o.clean_bound_multipliers = false;
+      else if (a == "--only") {
+        std::string list = value();
+        for (std::size_t pos = 0; pos <= list.size();) {
+          const std::size_t comma = std::min(list.find(',', pos), list.size());
+          if (comma > pos) o.only.push_back(list.substr(pos, comma - pos));
+          pos = comma + 1;
+        }
+      }
       else if (!a.empty() && a[0] == '-') usage("unknown option " + a);
       else if (o.dir.empty()) o.dir = a;
       else usage("more than one directory given");
@@ -104,6 +123,9 @@ void solve_lcprelax(const lcprelax::io::QpsModel& model, const Options& opt, Row
   lcprelax::QpSettings settings;
   settings.eps_abs = opt.eps;
   settings.time_limit = opt.time_limit;
+  settings.verbose = opt.verbose;
+  settings.exact_bound_steps = opt.exact_bound_steps;
+  settings.clean_bound_multipliers = opt.clean_bound_multipliers;
   try {
     lcprelax::QpSolver solver(settings);
     const auto t0 = std::chrono::steady_clock::now();
@@ -255,7 +277,9 @@ int main(int argc, char** argv) {
   for (const auto& entry : fs::directory_iterator(opt.dir, ec)) {
     std::string ext = entry.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (entry.is_regular_file() && ext == ".qps") files.push_back(entry.path());
+    const bool wanted = opt.only.empty() || std::find(opt.only.begin(), opt.only.end(),
+                                                      entry.path().stem().string()) != opt.only.end();
+    if (entry.is_regular_file() && ext == ".qps" && wanted) files.push_back(entry.path());
   }
   if (ec) usage("cannot read directory " + opt.dir.string() + ": " + ec.message());
   if (files.empty()) usage("no .qps files in " + opt.dir.string());

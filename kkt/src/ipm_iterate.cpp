@@ -59,6 +59,30 @@ double side_max_step(const Side& side) {
   return a;
 }
 
+// Bounds whose larger z/s is below this (scaled problem, unit-order diagonal after Ruiz
+// equilibration) keep their rebuilt step: there z/s·dx + ξ is accurate, and moving the
+// solve's error into a small z/s side's slack step breaks its primal consistency
+// (QRECIPE, QSC205, QSHARE1B, ... stalled when every bound was corrected).
+constexpr double kActiveBoundWeight = 1.0;
+
+// Corrects the pair (lower kl, upper ku; −1 where absent) of one quantity so that
+// dz_u − dz_l = target: the side with the larger z/s is assigned target minus the other
+// side's step (assigned, not corrected by a difference: its rebuilt dz = (−r_c − z·ds)/s
+// may be ~1e20 at s ~ 1e-18, and adding a difference of that size loses every digit) and
+// its ds follows from its complementarity equation s·dz + z·ds = −r_c.
+void match_signed_step(Side& lower, Side& upper, Index kl, Index ku, double target, double min_weight) {
+  const double wl = kl >= 0 ? lower.z(kl) / lower.s(kl) : -1.0;
+  const double wu = ku >= 0 ? upper.z(ku) / upper.s(ku) : -1.0;
+  if (std::max(wl, wu) < min_weight) return;
+  if (wu >= wl) {
+    upper.dz(ku) = target + (kl >= 0 ? lower.dz(kl) : 0.0);
+    upper.ds(ku) = (-upper.rc(ku) - upper.s(ku) * upper.dz(ku)) / upper.z(ku);
+  } else {
+    lower.dz(kl) = (ku >= 0 ? upper.dz(ku) : 0.0) - target;
+    lower.ds(kl) = (-lower.rc(kl) - lower.s(kl) * lower.dz(kl)) / lower.z(kl);
+  }
+}
+
 }  // namespace
 
 void Iterate::init_sides(const StandardForm& f) {
@@ -70,6 +94,10 @@ void Iterate::init_sides(const StandardForm& f) {
   g_upper_pos.assign(f.mg, -1);
   for (Index k = 0; k < g_lower.size(); ++k) g_lower_pos[g_lower.idx[k]] = k;
   for (Index k = 0; k < g_upper.size(); ++k) g_upper_pos[g_upper.idx[k]] = k;
+  b_lower_pos.assign(f.n, -1);
+  b_upper_pos.assign(f.n, -1);
+  for (Index k = 0; k < b_lower.size(); ++k) b_lower_pos[b_lower.idx[k]] = k;
+  for (Index k = 0; k < b_upper.size(); ++k) b_upper_pos[b_upper.idx[k]] = k;
 }
 
 Index Iterate::num_constraints() const {
@@ -111,22 +139,17 @@ void Iterate::xi_terms(Index mg, Index n, Vector& xig, Vector& xib) const {
   add_xi(b_upper, xib);
 }
 
-void Iterate::recover_side_steps(const Vector& dx, const Vector& dvg, const Vector& dzeta) {
+void Iterate::recover_side_steps(const Vector& dx, const Vector& dvg, const Vector& dzeta, const Vector& dzeta_b) {
   side_step(g_lower, dvg);
   side_step(g_upper, dvg);
   side_step(b_lower, dx);
   side_step(b_upper, dx);
-  for (Index i = 0; i < static_cast<Index>(g_lower_pos.size()); ++i) {
-    const Index kl = g_lower_pos[i], ku = g_upper_pos[i];
-    const double wl = kl >= 0 ? g_lower.z(kl) / g_lower.s(kl) : -1.0;
-    const double wu = ku >= 0 ? g_upper.z(ku) / g_upper.s(ku) : -1.0;
-    const double rebuilt = (ku >= 0 ? g_upper.dz(ku) : 0.0) - (kl >= 0 ? g_lower.dz(kl) : 0.0);
-    const double e = dzeta(i) - rebuilt;
-    Side& side = wu >= wl ? g_upper : g_lower;
-    const Index k = wu >= wl ? ku : kl;
-    side.dz(k) += side.upper ? e : -e;
-    side.ds(k) = (-side.rc(k) - side.s(k) * side.dz(k)) / side.z(k);
-  }
+  for (Index i = 0; i < static_cast<Index>(g_lower_pos.size()); ++i)
+    match_signed_step(g_lower, g_upper, g_lower_pos[i], g_upper_pos[i], dzeta(i), 0.0);
+  if (dzeta_b.size() == 0) return;
+  for (Index j = 0; j < static_cast<Index>(b_lower_pos.size()); ++j)
+    if (b_lower_pos[j] >= 0 || b_upper_pos[j] >= 0)
+      match_signed_step(b_lower, b_upper, b_lower_pos[j], b_upper_pos[j], dzeta_b(j), kActiveBoundWeight);
 }
 
 double Iterate::max_step() const {

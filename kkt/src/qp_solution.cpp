@@ -23,7 +23,10 @@ long double long_dot(const Vector& a, const Vector& b) {
 
 double dist_to_box(double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); }
 
-// u z⁺ + l z⁻, skipping infinite bounds with zero multiplier.
+// u z⁺ + l z⁻, skipping infinite bounds with zero multiplier. The product is a double, as
+// in qpbenchmark's float64 evaluation; on dual-degenerate LPs whose multipliers reach 1e9
+// it rounds by ~1e-4 per term, so a long-double evaluation of the same gap can differ
+// (generated LP of tests/qp_degenerate_lp_test.cpp: 5e-10 here, 3e-7 in long double).
 double support(double z, double lo, double hi) {
   if (z > 0) return hi * z;
   if (z < 0) return lo * z;
@@ -34,11 +37,12 @@ double support(double z, double lo, double hi) {
 
 void Workspace::resize(const StandardForm& f, const QpProblem& p) {
   const Index n = f.n, me = f.me, mg = f.mg;
-  for (Vector* v : {&rd, &dx, &last_dx, &zb, &xib, &rx, &xc, &rhs_x, &uzb, &cert_zb, &cert_n})
+  for (Vector* v : {&rd, &dx, &last_dx, &zb, &dzb, &xib, &rx, &xc, &rhs_x, &uzb, &cert_zb, &cert_n})
     v->setZero(n);
   for (Vector* v : {&rp, &dy, &last_dy, &ry, &yi, &cert_me}) v->setZero(me);
   for (Vector* v : {&dz, &zg, &xig, &rz, &dvg, &gc, &uzg, &cert_zg, &cert_mg}) v->setZero(mg);
   Px.setZero(p.num_variables());
+  zb_saved.setZero(p.num_variables());
   Aty.setZero(p.num_variables());
   Gtz.setZero(p.num_variables());
   Ax.setZero(p.num_equalities());

@@ -158,7 +158,12 @@ int QpSolver::Impl::newton_step() {
   w.rz = (-w.xig.array() / Dg.array()).matrix();
   const int steps = kkt.solve(form, w.rx, w.ry, w.rz, w.dx, w.dy, w.dz, settings.max_refinement);
   w.dvg.noalias() = form.G * w.dx;
-  it.recover_side_steps(w.dx, w.dvg, w.dz);
+  // dζ_b = −r_d − (P̃dx + Ẽᵀdy + G̃ᵀdζ_g): the first Newton block exactly (ipm_iterate.hpp).
+  w.dzb.noalias() = form.P.selfadjointView<Eigen::Upper>() * w.dx;
+  if (form.me) w.dzb.noalias() += form.Et * w.dy;
+  if (form.mg) w.dzb.noalias() += form.Gt * w.dz;
+  w.dzb = -w.rd - w.dzb;
+  it.recover_side_steps(w.dx, w.dvg, w.dz, settings.exact_bound_steps ? w.dzb : w.empty);
   return steps;
 }
 

@@ -25,6 +25,8 @@ struct Workspace {
   Vector last_dx, last_dy;       ///< previous step (infeasibility certificates)
   Vector zg, zb;                 ///< signed multipliers of rows (mg) and bounds (n)
   Vector xig, xib, rx, ry, rz, dvg;  ///< newton_step: ξ terms, right-hand sides, G̃·dx
+  Vector dzb;                    ///< newton_step: signed bound-multiplier step (n)
+  Vector empty;                  ///< size 0 (recover_side_steps without the bound correction)
   Vector xc, gc, rhs_x;          ///< cold start: projections and right-hand side
   // Unscaling and certificates.
   Vector yi, uzg, uzb;           ///< unscale_solution (me, mg, n)
@@ -32,6 +34,7 @@ struct Workspace {
   Vector cert_n, cert_me, cert_mg;  ///< certificate residuals (n, me, mg)
   // Unscaled space: residuals of the user's problem.
   Vector Px, Ax, Gx, Aty, Gtz;   ///< P x (n), A x (ma), G x (mi), Aᵀy (n), Gᵀz (n)
+  Vector zb_saved;               ///< z_bounds before clean_bound_multipliers (n)
 
   void resize(const StandardForm& f, const QpProblem& p);
 };
@@ -39,6 +42,10 @@ struct Workspace {
 /// Maps the scaled iterate back to the user's variables and multipliers.
 void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r, Workspace& w);
 Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w);
+/// Replaces the bound multipliers of variables at a bound by the exact componentwise
+/// value (qp_bound_multipliers.cpp); needs w.Px, w.Aty, w.Gtz of r (compute_residuals).
+/// Returns how many changed.
+int clean_bound_multipliers(const QpProblem& p, double eps_abs, QpResult& r, Workspace& w);
 
 /// Infeasibility certificates on a candidate direction (scaled space); on success the
 /// certificate is written into r (unscaled, ∞-norm 1) and true is returned; otherwise r

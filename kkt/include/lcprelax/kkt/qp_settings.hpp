@@ -65,6 +65,12 @@ struct QpSettings {
   double reg_dual = 1e-9;         ///< static dual regularization δ (scaled problem)
   double reg_max = 1e-2;          ///< largest regularization tried after failed factorizations
   int max_refinement = 10;        ///< iterative refinement steps against the unregularized KKT
+  /// Bound-multiplier steps from the dual-residual equation rather than z/s·dx + ξ
+  /// (ipm_iterate.hpp); false only to measure what it fixes.
+  bool exact_bound_steps = true;
+  /// Before each termination test, try the exact multipliers of the variables at a bound
+  /// (kkt/src/qp_bound_multipliers.cpp); false only to measure what it fixes.
+  bool clean_bound_multipliers = true;
   int ruiz_iterations = 10;       ///< Ruiz equilibration passes (0 disables scaling)
   double step_fraction = 0.995;   ///< fraction to the boundary
   KktForm kkt_form = KktForm::automatic;
