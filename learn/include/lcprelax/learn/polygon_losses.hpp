@@ -5,16 +5,27 @@
 // angular components): the simulator's positions are post-stabilized (simulator.hpp), so
 // q_{k+1} = q_k + Δt v⁺ holds only up to the projection, while v_{k+1} = v⁺ exactly.
 //
-// hard (Belbute-Peres et al. 2018): ℓ = ‖v⁺(z) − v̄‖², z the Stewart–Trinkle LCP's solution
-//   by Lemke (polygon_lcp.hpp); ∂ℓ/∂θ_k = ⟨∂ℓ/∂M, dM_k⟩ + ⟨∂ℓ/∂q, dq_k⟩ + gᵀ(dP_k z + dp_k)
-//   with g = 2(v⁺ − v̄) and (∂ℓ/∂M, ∂ℓ/∂q) = LemkeSolver::backward(Pᵀg). Zero where a
-//   wrong prior makes the contacts stick (λ's basis does not change with θ).
+// hard and convex are the scene path's step losses (step_loss.hpp) on the sample's island of
+// one body (to_contact_system, with every entry of Jn and Jt stored), chained to θ through
+// the assembly's tangents: ∂ℓ/∂θ_k = ⟨∂ℓ/∂(Jn, Jt, φ, μ, M⁻¹, v*), ∂(Jn, Jt, φ, μ, M⁻¹, v*)/∂θ_k⟩
+// (polygon_solvers.hpp). relaxed keeps its own dense implementation: the dual relaxed step
+// loss (step_loss_relaxed_dual.hpp) equals it per sample (on the 315 samples of
+// tests/learn_polygon_recovery_test.cpp at the truth and two perturbed models: relative
+// 3e-11 in ℓ, 5e-10 in ∂ℓ/∂θ) but has no warm start, and that test's training needs the
+// warm starts (cold, this implementation too ends with a 6.5% mass error, above its 5%).
+//
+// hard = hard_step_loss (step_loss_hard.hpp; Belbute-Peres et al. 2018): ℓ = ‖v⁺(z) − v̄‖²,
+//   z the Stewart–Trinkle LCP's solution by Lemke, gradient by LemkeSolver::backward. Zero
+//   where a wrong prior makes the contacts stick (λ's basis does not change with θ). Warm
+//   start: the previous evaluation's final basis. A solution of the perturbed LCP
+//   (solved_inaccurate) counts as solved.
 // relaxed (Parmar, Halm & Posa 2021; learn/relaxed_lcp.hpp): ℓ = c, the optimal value of
-//   the relaxed QP for the LCP (M, q) with prediction v⁺ = P z + p and target v̄; gradient
-//   by the envelope theorem, chained through the same tangents. The unknowns are rescaled
-//   to velocity units, z = S z̃ with S = diag(m on λn, β±; 1 on γ), rows scaled by S as well
-//   (the same LCP; the complementarity term z̃ᵀS(MSz̃ + q) = zᵀ(Mz + q) is unchanged), so
-//   that the relaxed QP's regularization (ε/2)‖z̃‖² does not pull the mass towards 0.
+//   the relaxed QP for the LCP (M, q) of polygon_lcp.hpp with prediction v⁺ = P z + p and
+//   target v̄; gradient by the envelope theorem, chained through the LCP's tangents. The
+//   unknowns are rescaled to velocity units, z = S z̃ with S = diag(m on λn, β±; 1 on γ),
+//   rows scaled by S as well (the same LCP; the complementarity term z̃ᵀS(MSz̃ + q) =
+//   zᵀ(Mz + q) is unchanged), so that the relaxed QP's regularization (ε/2)‖z̃‖² does not
+//   pull the mass towards 0.
 //   The Stewart–Trinkle M is not monotone: zᵀMz contains a2·μ·γ·λn with no γ² term, so the
 //   relaxed QP is made convex by NonconvexPolicy::shift (relaxed_lcp.hpp), and the shift
 //   δ ≈ (a2 μ m)²/H_nn it needs penalizes the sliding speed γ, i.e. favours sticking.
@@ -22,21 +33,20 @@
 //   ε = 1e-6. On the recovery problem of tests/learn_polygon_recovery_test.cpp, a2 = 0.1
 //   recovers every parameter; a2 = 1 learns μ too large (the shift favours sticking) and
 //   a2 = 0.02 leaves μ unidentifiable (the complementarity term is too weak); the numbers
-//   are in bench/README.md.
-// convex (the two-phase model of models/contact_step.hpp solve_convex_model), with
-//   an L2 deviation penalty of weight w ≥ 0 in both subproblem objectives: the prediction's
-//   deviation from the target in the mass norm, (w/2)‖v⁺(λ) − v̄‖²_M, which with
-//   v⁺ = v* + M⁻¹Jᵀλ adds (w/2)λᵀWλ + wλᵀJ(v* − v̄) (+ const):
-//     1. min_{λn ≥ 0} ½λnᵀ(1+w)Wnn λn + λnᵀ(bn + wJn(v* − v̄)),  bn = Jn v* + max(φ,0)/Δt,
-//        s.t. Wnn λn + bn ≥ 0 (implied by optimality when w = 0; with w > 0 it must be
-//        explicit, else κ can be too small for phase 2 to be feasible)
-//     2. κ = eᵀmax(λn¹, 0);  min ½λᵀ[(1+w)W + 2ρ diag(exp(φ)) diag(Wnn)]λ + λᵀ(Jv* + wJ(v* − v̄))
-//        s.t. Wn λ + bn ≥ 0, λn ≥ 0, eᵀλn ≤ κ(1 + s) + 1e-12, |λt| ≤ μλn
-//   (s = 1e-6, else 1e-4, 1e-2 as convex_model.cpp), ℓ = ‖v⁺(λ²) − v̄‖², gradient by
-//   QpSolver::backward of phase 2, then of phase 1 through κ (∂ℓ/∂λn¹ = (1+s)∂ℓ/∂u_κ on
-//   positive entries; Amos & Kolter 2017). With w = 0 the forward is the library's convex
-//   model. Where no contact approaches (both phase-1 linear terms ≥ 0) λ = 0 directly.
-// Every function returns ok = false with a message when its solve fails.
+//   are in bench/README.md. Warm start: the previous evaluation's relaxed-LCP result.
+// convex = convex_step_loss (step_loss_convex.hpp) in the dual formulation with
+//   phase1_regularization = 0: the two-phase model of models/contact_step.hpp
+//   (solve_convex_model) with an L2 deviation penalty of weight w ≥ 0 in both phase
+//   objectives, (w/2)‖v⁺(λ) − v̄‖²_M, ℓ = ‖v⁺(λ²) − v̄‖², gradient by QpSolver::backward of
+//   phase 2, then of phase 1 through κ (Amos & Kolter 2017). With w = 0 the forward is the
+//   library's convex model. Phase 1's row Wnn λn + bn ≥ 0 is posed for w > 0 only (implied
+//   by optimality when w = 0). Where no contact approaches (bn ≥ 0 and phase 1's linear
+//   term ≥ 0) λ = 0 directly. No warm start (the step loss has none). With w = 0 and more
+//   contact candidates than the body's 3 dofs can separate (Wnn singular), phase 1's λn and
+//   κ are not unique, and posing the row anyway picks another solution: on the recovery
+//   test's data at perturbed models the mean loss then differs by 4e-5 relative and single
+//   samples' ∂ℓ/∂θ by up to 0.4 (with w = 1, the default, the two agree to 1e-9).
+// Every function returns ok = false with the step loss's message when its solve fails.
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/learn/batch.hpp>
 #include <lcprelax/learn/polygon_assembly.hpp>
@@ -60,7 +70,7 @@ struct PolygonLossSettings {
   QpSettings qp;                     ///< relaxed and convex
   double convex_rho = 1e-3;          ///< ρ of the convex model (contact_step.hpp)
   double convex_deviation = 1.0;     ///< w of the deviation penalty, ≥ 0
-  bool warm_start = true;            ///< per-sample warm starts from the previous evaluation
+  bool warm_start = true;            ///< hard, relaxed: per-sample warm starts from the previous evaluation
   /// Extra contact candidates (m, ≥ 0; polygon_active_vertices' extra_margin): vertices
   /// within the speculative margin + candidate_margin of the ground enter the sample's
   /// problem. With 0 (the simulator's active set), vertices displaced by a perturbed
@@ -73,12 +83,11 @@ struct PolygonLossSettings {
   std::string validation_error() const;  ///< empty if valid
 };
 
-/// What a sample keeps between evaluations (warm starts).
+/// What a sample keeps between evaluations.
 struct PolygonWarmStart {
-  std::vector<bool> lemke_basis;     ///< hard
+  std::vector<bool> lemke_basis;     ///< hard: the last final basis (tried first)
   RelaxedLcpResult relaxed;          ///< relaxed (valid when relaxed_valid)
   bool relaxed_valid = false;
-  Vector x1, y1, z1, zb1, x2, y2, z2, zb2;  ///< convex phases
 };
 
 /// Seconds spent in each part (accumulated).
@@ -87,15 +96,14 @@ struct PolygonLossTimes {
   long samples = 0;
 };
 
-/// Solvers kept between the samples one thread evaluates (polygon_solvers.hpp, internal):
-/// Lemke (hard) and the two phases' QpSolvers (convex), whose symbolic analyses are reused
-/// (QpSolver::update) while the sparsity pattern repeats.
+/// A thread's workspace for the hard and convex losses (polygon_solvers.hpp, internal).
+/// The step losses keep no solver between calls, so it holds nothing; it stays in the
+/// signatures so that callers need not change.
 struct PolygonSolvers;
 
 /// Per-sample losses for the assembled data `a` (value and tangents) and target v̄.
-/// `warm` is read and updated when settings.warm_start. `solvers` (hard, convex): a
-/// thread's workspace made with settings (PolygonObjective's), or null for solvers local
-/// to the call; either gives the same result bit for bit.
+/// `warm` is read and updated when settings.warm_start (hard: the Lemke basis; relaxed: the
+/// relaxed-LCP result). `solvers` (hard, convex): unused (null or PolygonObjective's).
 SampleResult polygon_hard_loss(const PolygonAssembly& a, const Vec3& target, double dt,
                                const PolygonLossSettings& settings, PolygonWarmStart& warm, PolygonLossTimes& times,
                                PolygonSolvers* solvers = nullptr);
