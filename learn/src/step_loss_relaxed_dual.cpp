@@ -12,6 +12,14 @@
 
 namespace lcprelax::learn {
 
+const char* to_string(RelaxedDualScaling s) {
+  switch (s) {
+    case RelaxedDualScaling::energy: return "energy";
+    case RelaxedDualScaling::velocity: return "velocity";
+  }
+  return "unknown";
+}
+
 RelaxedDualStepLossSettings::RelaxedDualStepLossSettings() {
   relaxed.nonconvex = NonconvexPolicy::shift;
   relaxed.a2 = 0.1;
@@ -24,6 +32,7 @@ std::string RelaxedDualStepLossSettings::validation_error() const {
   if (relaxed.max_dissipation != MaxDissipation::none) return "relaxed: max_dissipation must be none for an island";
   e = qp.validation_error();
   if (!e.empty()) return "qp: " + e;
+  if (scaling != RelaxedDualScaling::energy && scaling != RelaxedDualScaling::velocity) return "scaling: unknown value";
   return {};
 }
 
@@ -73,18 +82,25 @@ StepLossResult RelaxedDualStepLossWorkspace::evaluate(const ContactSystem& s, co
   for (Index k = 0; k < s.Jn.outerSize(); k += 3)
     for (SparseMatrix::InnerIterator it(s.Jn, k); it; ++it) inv_mass(it.row()) += s.minv(k);
   const Vector Sc = inv_mass.cwiseInverse();
+  const bool energy = m.settings.scaling == RelaxedDualScaling::energy;
   Vector& S = m.S;
   S = Vector::Ones(n);
   S.head(nc) = Sc;
-  for (Index f = 0; f < nf; ++f) S(nc + f) = S(nc + nf + f) = Sc(s.friction_rows[static_cast<std::size_t>(f)]);
+  Vector R = Vector::Ones(n);  // row scaling: S (energy), or 1/S_c(f) on the γ rows (velocity)
+  for (Index f = 0; f < nf; ++f) {
+    const double sf = Sc(s.friction_rows[static_cast<std::size_t>(f)]);
+    S(nc + f) = S(nc + nf + f) = sf;
+    if (!energy) R(nc + 2 * nf + f) = 1.0 / sf;
+  }
+  if (energy) R = S;
 
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   const StewartTrinklePrediction pred = stewart_trinkle_prediction(s);
   RelaxedLcpData data;
   data.M = lcp.M;
   for (Index j = 0; j < data.M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(data.M, j); it; ++it) it.valueRef() *= S(it.row()) * S(j);
-  data.q = S.cwiseProduct(lcp.q);
+    for (SparseMatrix::InnerIterator it(data.M, j); it; ++it) it.valueRef() *= R(it.row()) * S(j);
+  data.q = R.cwiseProduct(lcp.q);
   data.P = pred.P;  // same pattern, columns scaled
   for (Index j = 0; j < data.P.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(data.P, j); it; ++it) it.valueRef() *= S(j);
@@ -104,18 +120,20 @@ StepLossResult RelaxedDualStepLossWorkspace::evaluate(const ContactSystem& s, co
   r.loss = res.cost;
   r.v_next = pred.P * S.cwiseProduct(res.lambda) + pred.p;
 
-  // Unscale: ∂ℓ/∂(M, q, P) and ∂ℓ/∂S (every entry of Ms = S M S depends on S, constants too).
+  // Unscale: ∂ℓ/∂(M, q, P), ∂ℓ/∂S and ∂ℓ/∂R (every entry of Ms = R M S depends on R and S,
+  // the constant entries too).
   const RelaxedLcpGradient& g = res.gradient;
-  Vector dS = g.dq.cwiseProduct(lcp.q);
+  Vector dS = Vector::Zero(n);
+  Vector dR = g.dq.cwiseProduct(lcp.q);
   SparseMatrix dM = g.dM;  // Ms's pattern = M_lcp's
   for (Index j = 0; j < dM.outerSize(); ++j) {
     SparseMatrix::InnerIterator mv(lcp.M, j);
     for (SparseMatrix::InnerIterator it(dM, j); it; ++it, ++mv) {
       const Index i = it.row();
       const double e = it.value() * mv.value();  // ∂ℓ/∂Ms_ij · M_ij
-      dS(i) += e * S(j);
-      dS(j) += e * S(i);
-      it.valueRef() *= S(i) * S(j);
+      dR(i) += e * S(j);
+      dS(j) += e * R(i);
+      it.valueRef() *= R(i) * S(j);
     }
   }
   SparseMatrix dP = g.dP;  // Ps's pattern = P's
@@ -126,13 +144,17 @@ StepLossResult RelaxedDualStepLossWorkspace::evaluate(const ContactSystem& s, co
       it.valueRef() *= S(j);
     }
   }
-  const Vector dq = S.cwiseProduct(g.dq);
+  const Vector dq = R.cwiseProduct(g.dq);
   r.grad = stewart_trinkle_pullback(s, dt, dM, dq, dP, g.dp);
 
-  // ∂ℓ/∂S_c (λn_c and the β± of c's friction rows) → ∂ℓ/∂minv(3b) = −S_c² ∂ℓ/∂S_c.
+  // ∂ℓ/∂S_c (λn_c and the β± of c's rows; R = S, or R_γf = 1/S_c(f)) → ∂ℓ/∂minv(3b) = −S_c² ∂ℓ/∂S_c.
+  if (energy) dS += dR;
   Vector dSc = dS.head(nc);
-  for (Index f = 0; f < nf; ++f)
-    dSc(s.friction_rows[static_cast<std::size_t>(f)]) += dS(nc + f) + dS(nc + nf + f);
+  for (Index f = 0; f < nf; ++f) {
+    const Index c = s.friction_rows[static_cast<std::size_t>(f)];
+    dSc(c) += dS(nc + f) + dS(nc + nf + f);
+    if (!energy) dSc(c) -= dR(nc + 2 * nf + f) / (Sc(c) * Sc(c));
+  }
   for (Index k = 0; k < s.Jn.outerSize(); k += 3)
     for (SparseMatrix::InnerIterator it(s.Jn, k); it; ++it)
       r.grad.minv(k) -= Sc(it.row()) * Sc(it.row()) * dSc(it.row());
