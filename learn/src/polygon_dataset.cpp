@@ -1,4 +1,5 @@
 // Transitions of a polygon on the ground: generation and CSV loading (polygon_dataset.hpp).
+#include "random_draws.hpp"
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_dataset.hpp>
 #include <lcprelax/models/simulator.hpp>
@@ -11,21 +12,13 @@
 namespace lcprelax::learn {
 namespace {
 
+using detail::normal;
+using detail::uniform;
+
 constexpr double kPi = 3.14159265358979323846;
 
 bool nonneg(double x) { return std::isfinite(x) && x >= 0; }
 
-// A uniform double in [a, b) from the generator's top 53 bits (the same on every library).
-double uniform(std::mt19937_64& rng, double a, double b) {
-  return a + (b - a) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
-
-// Standard normal by Box–Muller from two uniforms (library-independent, unlike
-// std::normal_distribution).
-double normal(std::mt19937_64& rng) {
-  const double u1 = 1.0 - uniform(rng, 0.0, 1.0), u2 = uniform(rng, 0.0, 1.0);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-}
 
 }  // namespace
 

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <random>
-#include <sstream>
 
 namespace lcprelax::learn {
 namespace {
@@ -37,28 +36,6 @@ HalfPlane ground_half_plane(double height, double angle) {
   g.normal = Vec2(-std::sin(angle), std::cos(angle));
   g.offset = height * std::cos(angle);
   return g;
-}
-
-PolygonLearnFlags parse_polygon_learn_flags(const std::string& list) {
-  PolygonLearnFlags f{false, false, false, false, false};
-  std::stringstream ss(list);
-  std::string item;
-  int count = 0;
-  while (std::getline(ss, item, ',')) {
-    bool* target = item == "mu" ? &f.mu
-                   : item == "mass" ? &f.mass
-                   : item == "inertia" ? &f.inertia
-                   : item == "vertices" ? &f.vertices
-                   : item == "ground" ? &f.ground
-                                      : nullptr;
-    if (!target)
-      throw InputError("--learn: unknown parameter kind '" + item + "' (expected mu, mass, inertia, vertices, ground)");
-    if (*target) throw InputError("--learn: '" + item + "' given twice");
-    *target = true;
-    ++count;
-  }
-  if (count == 0) throw InputError("--learn: empty list");
-  return f;
 }
 
 ParameterSet make_polygon_parameters(const PolygonModel& model, const PolygonLearnFlags& flags) {

@@ -1,5 +1,6 @@
 // Scene datasets: shape classes, validation and generation by the Simulator
 // (scene_dataset.hpp states the rules).
+#include "random_draws.hpp"
 #include <lcprelax/learn/scene_dataset.hpp>
 #include <lcprelax/learn/scene_params.hpp>
 #include <lcprelax/models/simulator.hpp>
@@ -15,20 +16,13 @@
 namespace lcprelax::learn {
 namespace {
 
+using detail::normal;
+using detail::uniform;
+
 constexpr double kPi = 3.14159265358979323846;
 
 bool nonneg(double x) { return std::isfinite(x) && x >= 0; }
 
-// A uniform double in [a, b) from the generator's top 53 bits (the same on every library).
-double uniform(std::mt19937_64& rng, double a, double b) {
-  return a + (b - a) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
-}
-
-// Standard normal by Box–Muller (library-independent, unlike std::normal_distribution).
-double normal(std::mt19937_64& rng) {
-  const double u1 = 1.0 - uniform(rng, 0.0, 1.0), u2 = uniform(rng, 0.0, 1.0);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-}
 
 // An integer uniform in [0, n) (n ≥ 1) from the top 53 bits.
 std::size_t below(std::mt19937_64& rng, std::size_t n) {

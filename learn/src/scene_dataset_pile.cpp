@@ -1,5 +1,6 @@
 // The learning pile: polygons of a few shape classes dropped into a box
 // (scene_dataset.hpp: make_learning_pile states the layout and the class table).
+#include "random_draws.hpp"
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/scene_dataset.hpp>
 #include <lcprelax/core/errors.hpp>
@@ -11,6 +12,8 @@
 
 namespace lcprelax::learn {
 namespace {
+
+using detail::uniform;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxBodies = 100000;
@@ -44,10 +47,6 @@ std::array<ShapeClass, kClasses> class_table() {
            {regular(3, 0.08), 0.08, 1500.0},
            {regular(5, 0.07), 0.07, 800.0},
            {rectangle(0.14, 0.07), 0.5 * std::hypot(0.14, 0.07), 1200.0}}};
-}
-
-double uniform(std::mt19937_64& rng, double a, double b) {
-  return a + (b - a) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
 }  // namespace

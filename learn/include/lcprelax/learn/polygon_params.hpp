@@ -22,6 +22,7 @@
 // Each kind can be learned or held (PolygonLearnFlags → Parameter::learn); held parameters
 // keep their value (their gradient entries are still computed, chain_gradient zeroes them).
 #include <lcprelax/learn/parameters.hpp>
+#include <lcprelax/learn/scene_params.hpp>
 #include <lcprelax/world/world.hpp>
 
 #include <cstdint>
@@ -51,14 +52,11 @@ PolygonModel reference_polygon_model();
 /// The ground half-plane of the model: normal (−sin α, cos α), offset h cos α.
 HalfPlane ground_half_plane(double height, double angle);
 
-/// Which parameter kinds are learned.
-struct PolygonLearnFlags {
-  bool mu = true, mass = true, inertia = true, vertices = true, ground = false;
-};
+/// Which parameter kinds are learned: the same kinds as a scene's (scene_params.hpp).
+using PolygonLearnFlags = SceneLearnFlags;
 
-/// Parses a comma-separated list of "mu", "mass", "inertia", "vertices", "ground" (each at
-/// most once, at least one); throws InputError("--learn: ...") naming an unknown entry.
-PolygonLearnFlags parse_polygon_learn_flags(const std::string& list);
+/// parse_scene_learn_flags (scene_params.hpp).
+inline PolygonLearnFlags parse_polygon_learn_flags(const std::string& list) { return parse_scene_learn_flags(list); }
 
 /// Index arithmetic of the layout above.
 struct PolygonLayout {
