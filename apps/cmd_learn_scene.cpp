@@ -5,7 +5,7 @@
 //       [--classes C] [--method hard|relaxed|convex] [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F] [--optimizer sgd|adam] [--lr α] [--lr-decay d]
-//       [--log OUT.csv] [--plot OUT.png|OUT.svg] [--json]
+//       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--json]
 //
 // Scene: --scene FILE.json (scenes/scene_json.hpp), or --bodies N: the learning pile of N
 // polygons of C shape classes dropped into a box (learn/scene_dataset.hpp
@@ -53,6 +53,10 @@ struct LearnSceneOptions {
   std::string optimizer = "adam";
   double lr = 0.02;
   double lr_decay = 0.003;
+  int proximal_iterations = 1;
+  double phase1_regularization = learn::ConvexStepLossSettings{}.phase1_regularization;
+  double deviation = learn::ConvexStepLossSettings{}.deviation;
+  double beta2 = learn::OptimizerSettings{}.beta2;
   std::string log, plot;
   bool json = false;
 };
@@ -93,6 +97,10 @@ void write_plot(const std::string& path, const learn::TrainResult& r, const lear
 int run_learn_scene(const LearnSceneOptions& o) {
   learn::SceneLossSettings ls;
   ls.method = learn::parse_loss_method(o.method);
+  require_option(o.proximal_iterations >= 1 && o.proximal_iterations <= 1000, "--proximal-iterations", "must be in [1, 1000]");
+  ls.relaxed.proximal_iterations = o.proximal_iterations;
+  ls.convex.phase1_regularization = o.phase1_regularization;  // validated with the settings
+  ls.convex.deviation = o.deviation;
   learn::SceneParameterSettings ps;
   ps.learn = learn::parse_scene_learn_flags(o.learn);
   require_option(o.scene.empty() || o.bodies == LearnSceneOptions{}.bodies, "--bodies", "cannot be combined with --scene");
@@ -113,6 +121,7 @@ int run_learn_scene(const LearnSceneOptions& o) {
   learn::TrainSettings t = learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr,
                                                 learn::OptimizerSettings{}.momentum, o.json, o.log, o.stop);
   t.optimizer.decay = o.lr_decay;
+  t.optimizer.beta2 = o.beta2;
 
   learn::SceneDataset data;
   if (!o.data.empty()) {
@@ -178,6 +187,8 @@ int run_learn_scene(const LearnSceneOptions& o) {
   j["evaluated_contacts"] = st.contacts;
   j["inaccurate_islands"] = st.inaccurate_islands;
   j["failed_islands"] = st.failed_islands;
+  j["cold_contacts"] = st.cold_contacts;
+  j["proximal_solves"] = st.proximal_solves;
   j["failed"] = final_eval.failed;
   if (o.json) {
     print_json(j);
@@ -198,6 +209,15 @@ Command add_learn_scene_command(CLI::App& learn) {
   auto o = std::make_shared<LearnSceneOptions>();
   CLI::App* app = learn.add_subcommand("scene", "learn contact parameters of a multi-body scene from its transitions");
   app->add_option("--scene", o->scene, "scene JSON (default: a generated learning pile)");
+  app->add_option("--phase1-regularization", o->phase1_regularization,
+                  "convex: r of phase 1's (r/2) sum Wnn_ii lambda_i^2 (0: the simulator's model exactly)")
+      ->capture_default_str();
+  app->add_option("--deviation", o->deviation, "convex: weight w of the L2 deviation penalty in both phases")
+      ->capture_default_str();
+  app->add_option("--beta2", o->beta2, "adam: decay of the squared-gradient average, in [0, 1)")->capture_default_str();
+  app->add_option("--proximal-iterations", o->proximal_iterations,
+                  "relaxed: QP solves per evaluation, each re-centring the convexity shift at the last solution")
+      ->capture_default_str();
   app->add_option("--bodies", o->bodies, "bodies of the generated learning pile")->capture_default_str();
   app->add_option("--classes", o->classes, "shape classes of the generated pile (1..4)")->capture_default_str();
   app->add_option("--data", o->data, "trajectory CSV of the scene (default: generate)");
@@ -212,7 +232,7 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--noise", o->noise, "Gaussian noise sigma on recorded q and v (SI units)")->capture_default_str();
   app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
   app->add_option("--optimizer", o->optimizer, "sgd or adam")->capture_default_str();
-  app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia, metres, radians)")->capture_default_str();
+  app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia; lengths in units of their class radius; radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");
   app->add_option("--plot", o->plot, "relative error of each parameter against wall time (OUT.png|svg)");

@@ -13,7 +13,8 @@
 // 3); the peak resident set size (getrusage) after the run of N. The log-log slope of
 // evaluate time against contacts is fitted by least squares over the N with ≥ 50 contacts.
 // Throughput: the transitions of a `throughput-bodies` pile, evaluate_batch over all of them
-// with 1 and with 2 threads (best of 3 each), the ratio in one run.
+// with 1 and with 2 threads (best of 3 each, warm: every contact has its proximal centre),
+// the ratio in one run; bitwise equality of 1 and 2 threads from the same (empty) centres.
 #include <lcprelax/learn/batch.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
 #include <lcprelax/models/simulator.hpp>
@@ -163,7 +164,19 @@ int main(int argc, char** argv) {
                                           [&](Index i, int thread) { return objective.evaluate(i, theta, thread); });
         best[threads] = std::min(best[threads], now() - t0);
       }
-    const bool same = results[1].loss == results[2].loss && results[1].gradient == results[2].gradient;
+    // Bitwise: the relaxed objective keeps each contact's proximal centre between
+    // evaluations, so both thread counts start from no centres and evaluate twice (the
+    // second evaluation warm); the timed runs above are warm evaluations.
+    BatchResult twice[3];
+    for (int threads : {1, 2}) {
+      objective.reset_centers();
+      objective.prepare(theta, threads);
+      for (int k = 0; k < 2; ++k)
+        twice[threads] = evaluate_batch(all, theta.size(), threads,
+                                        [&](Index i, int thread) { return objective.evaluate(i, theta, thread); });
+    }
+    (void)results;
+    const bool same = twice[1].loss == twice[2].loss && twice[1].gradient == twice[2].gradient;
     std::printf("throughput (%d bodies, %zu transitions, relaxed): 1 thread %.4g s, 2 threads %.4g s, ratio %.2f, "
                 "bitwise equal: %s\n",
                 tp_bodies, all.size(), best[1], best[2], best[1] / best[2], same ? "yes" : "no");

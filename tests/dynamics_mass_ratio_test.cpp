@@ -65,7 +65,9 @@ TEST_P(MassRatio, HeavyPlankOnSmallBoxesStaysAtRest) {
               to_string(model), ratio, drift, penetration, failed);
   EXPECT_LT(drift, 1e-6);
   EXPECT_LT(penetration, 1e-4);
-  if (known_failure) EXPECT_GT(failed, 0) << "the known phase-2 failure no longer occurs: update this test";
+  if (known_failure) {
+    EXPECT_GT(failed, 0) << "the known phase-2 failure no longer occurs: update this test";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(LcpAndConvex, MassRatio,

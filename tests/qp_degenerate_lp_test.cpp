@@ -20,6 +20,8 @@
 // off (statuses in each test's comment).
 #include <lcprelax/kkt/qp_solver.hpp>
 
+#include "degenerate_qp_family.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,46 +35,10 @@
 namespace lcprelax {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEps = 1e-9;
 
 QpProblem make_lp(unsigned seed, Index n, Index m, double big, double spread) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  const auto mag = [&]() { return std::pow(10.0, spread * (u01(rng) - 0.5)); };
-  QpProblem p(n);
-  std::vector<Triplet> t;
-  for (Index i = 0; i < m; ++i)
-    for (int k = 0; k < 4; ++k)
-      t.emplace_back(i, (i * 7 + k * 13 + static_cast<Index>(u01(rng) * 5)) % n, (u01(rng) - 0.3) * mag());
-  SparseMatrix G(m, n);
-  G.setFromTriplets(t.begin(), t.end());
-  Vector x0(n);
-  for (Index j = 0; j < n; ++j) x0(j) = u01(rng) < 0.5 ? 0.0 : (u01(rng) < 0.3 ? big : big * u01(rng));
-  const Vector g0 = G * x0;
-  p.G = G;
-  p.l = Vector(m);
-  p.u = Vector::Constant(m, kInf);
-  for (Index i = 0; i < m; ++i) p.l(i) = u01(rng) < 0.6 ? g0(i) : g0(i) - big * u01(rng);
-  p.xl = Vector::Zero(n);
-  p.xu = Vector::Constant(n, big);
-  Vector w = Vector::Zero(m);
-  for (Index i = 0; i < m; ++i)
-    if (p.l(i) == g0(i) && u01(rng) < 0.5) w(i) = mag();
-  Vector zb = Vector::Zero(n);
-  for (Index j = 0; j < n; ++j) {
-    if (x0(j) == 0.0 && u01(rng) < 0.7) zb(j) = -mag();
-    if (x0(j) == big && u01(rng) < 0.7) zb(j) = mag();
-  }
-  p.q = G.transpose() * w - zb;  // stationarity at x0 with z = −w (lower sides) and z_b
-  return p;
-}
-
-// u z⁺ + l z⁻ as a double product (qpbenchmark's float64 definition), summed in long double.
-double support(double z, double lo, double hi) {
-  if (z > 0) return hi * z;
-  if (z < 0) return lo * z;
-  return 0.0;
+  return testing::make_degenerate_qp(seed, n, m, big, spread, false);
 }
 
 // max(primal, dual, gap) recomputed from the data (definitions of qp_settings.hpp; A empty).
@@ -84,8 +50,8 @@ double worst_residual(const QpProblem& p, const QpResult& r) {
   const Vector rd = p.q + p.G.transpose() * r.z + r.z_bounds;
   long double gap = 0.0L;
   for (Index j = 0; j < r.x.size(); ++j) gap += static_cast<long double>(p.q(j)) * r.x(j);
-  for (Index i = 0; i < r.z.size(); ++i) gap += support(r.z(i), p.l(i), p.u(i));
-  for (Index j = 0; j < r.x.size(); ++j) gap += support(r.z_bounds(j), p.xl(j), p.xu(j));
+  for (Index i = 0; i < r.z.size(); ++i) gap += testing::support_term(r.z(i), p.l(i), p.u(i));
+  for (Index j = 0; j < r.x.size(); ++j) gap += testing::support_term(r.z_bounds(j), p.xl(j), p.xu(j));
   return std::max({primal, rd.lpNorm<Eigen::Infinity>(), static_cast<double>(std::fabs(gap))});
 }
 

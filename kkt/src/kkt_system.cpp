@@ -101,7 +101,10 @@ KktBackend KktSystem::resolve_backend(KktBackend requested, const StandardForm& 
   return static_cast<long>(f.n) + f.me + f.mg <= dense_max_kkt ? KktBackend::dense : KktBackend::cholmod;
 }
 
-bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message) {
+bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message,
+                      KktOrdering ordering) {
+  const sparse::CholmodOrdering cholmod_ordering =
+      ordering == KktOrdering::amd ? sparse::CholmodOrdering::amd : sparse::CholmodOrdering::best;
   if (backend == KktBackend::automatic) backend = KktBackend::cholmod;  // callers resolve it first
   const bool dense = backend == KktBackend::dense;
   KktForm form = requested;
@@ -112,7 +115,7 @@ bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backe
   if (form != KktForm::eliminated) {
     build_full_pattern(f);
     if (backend == KktBackend::cholmod)
-      full = std::make_unique<sparse::CholmodLdlt>();
+      full = std::make_unique<sparse::CholmodLdlt>(0.0, cholmod_ordering);
     else if (dense)
       full = std::make_unique<sparse::DenseLdlt>();
     else
@@ -133,7 +136,7 @@ bool KktSystem::setup(const StandardForm& f, KktForm requested, KktBackend backe
       if (dense)
         elim = std::make_unique<sparse::DenseLdlt>();
       else
-        elim = std::make_unique<sparse::CholmodLlt>();
+        elim = std::make_unique<sparse::CholmodLlt>(cholmod_ordering);
       if (auto r = elim->analyze(K_); !r.ok()) {
         message = "KKT analysis failed: " + r.message;
         return false;
@@ -284,6 +287,8 @@ int KktSystem::solve(const StandardForm& f, const Vector& rx, const Vector& ry, 
 }
 
 long KktSystem::factor_nnz() const { return factor_ ? factor_->factor_nnz() : 0; }
+
+double KktSystem::factor_flops() const { return factor_ ? factor_->factor_flops() : 0.0; }
 
 int KktSystem::numeric_factorizations() const { return factor_ ? factor_->numeric_factorizations() : 0; }
 

@@ -12,7 +12,9 @@
 // so δ_g may be 0: qp_ipm_loop.cpp drops it when the refinement stalls). Full form:
 // the upper triangle of that quasi-definite matrix, CHOLMOD LDLᵀ. Eliminated form (only
 // when me = 0): H = P + Db + ρI + Gᵀ diag(Dg/(1 + δ Dg)) G by CHOLMOD supernodal LLᵀ.
-// The data → K index maps are built once, so refilling values is a scatter.
+// The data → K index maps are built once, so refilling values is a scatter. CHOLMOD's
+// fill-reducing ordering: KktOrdering (AMD, or the fewest predicted flops of AMD, METIS and
+// NESDIS for expensive factors); the automatic form compares nnz(L) of the kept orderings.
 // Backend dense (tiny problems): the same K (either form) by sparse::DenseLdlt, whose
 // pivot signs are checked in both forms (n positive pivots).
 // Solves are refined against K0 (iterative refinement; stop when the residual improves
@@ -37,7 +39,8 @@ class KktSystem {
   /// Chooses the form (automatic: smaller predicted nnz(L)), builds pattern, maps and the
   /// symbolic analysis. Returns false with a message if the analysis fails.
   /// `backend` must be resolved (not automatic: see resolve_backend).
-  bool setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message);
+  bool setup(const StandardForm& f, KktForm requested, KktBackend backend, std::string& message,
+             KktOrdering ordering = KktOrdering::automatic);
   /// automatic → dense when n + me + mg ≤ dense_max_kkt, else cholmod; others unchanged.
   static KktBackend resolve_backend(KktBackend requested, const StandardForm& f, int dense_max_kkt);
   /// Fills values for (Db, Dg, ρ, δ, δ_g) and factorizes numerically.
@@ -53,6 +56,8 @@ class KktSystem {
   /// ‖K0·d − rhs‖∞ / (1 + ‖rhs‖∞) after the last solve's refinement.
   double last_relative_residual() const { return last_relative_residual_; }
   long factor_nnz() const;
+  /// Predicted flops of one numeric factorization (0 when the backend does not say).
+  double factor_flops() const;
   int numeric_factorizations() const;
 
  private:

@@ -15,19 +15,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-bool within(const detail::Residuals& r, const QpSettings& s, double factor) {
-  return r.primal <= factor * (s.eps_abs + s.eps_rel * r.scale_p) &&
-         r.dual <= factor * (s.eps_abs + s.eps_rel * r.scale_d) &&
-         r.gap <= factor * (s.eps_abs + s.eps_rel * r.scale_g);
-}
-
-// Worst ratio of residual to tolerance.
-double merit_of(const detail::Residuals& r, const QpSettings& s) {
-  if (!std::isfinite(r.primal) || !std::isfinite(r.dual) || !std::isfinite(r.gap))
-    return std::numeric_limits<double>::infinity();
-  return std::max({r.primal / (s.eps_abs + s.eps_rel * r.scale_p), r.dual / (s.eps_abs + s.eps_rel * r.scale_d),
-                   r.gap / (s.eps_abs + s.eps_rel * r.scale_g)});
-}
+using detail::merit_of;
+using detail::within;
 
 constexpr double kInaccurateFactor = 1e3;  // stalled solves within 1e3·eps: solved_inaccurate
 constexpr int kFirstInfeasibilityCheck = 3;
@@ -46,14 +35,15 @@ void fill_residuals(QpInfo& info, const detail::Residuals& r) {
 }  // namespace
 
 void QpSolver::Impl::run(QpInfo& info) {
-  const auto t0 = Clock::now();
   const detail::StandardForm& f = form;
   rho = settings.reg_primal;
   delta = settings.reg_dual;
   delta_rows = delta;
   may_drop_row_regularization = true;
-  if (!initial_point(info)) {
-    info.status = QpStatus::numerical_error;
+  const bool no_time = !has_warm_start && out_of_time(predicted_factor_seconds());
+  if (no_time || !initial_point(info)) {
+    info.status = no_time ? QpStatus::time_limit : QpStatus::numerical_error;
+    if (no_time) info.message = "time limit: no time for the first KKT factorization";
     result.x.resize(0);  // no iterate: an empty solution
     result.y.resize(0);
     result.z.resize(0);
@@ -134,7 +124,11 @@ void QpSolver::Impl::run(QpInfo& info) {
       if (info.message.empty()) info.message = why;
     };
     if (info.iterations >= settings.max_iter) return stop_at_limit(QpStatus::max_iterations, "iteration limit reached");
-    if (seconds_since(t0) > settings.time_limit) return stop_at_limit(QpStatus::time_limit, "time limit reached");
+    // The next step starts with a factorization that cannot be interrupted: stop before it if
+    // it would end past the limit (its predicted time: Impl::predicted_factor_seconds).
+    if (out_of_time(0.0)) return stop_at_limit(QpStatus::time_limit, "time limit reached");
+    if (out_of_time(predicted_factor_seconds()))
+      return stop_at_limit(QpStatus::time_limit, "time limit: the next KKT factorization would end past it");
     const double merit = std::max({res.primal / (settings.eps_abs + settings.eps_rel * res.scale_p),
                                    res.dual / (settings.eps_abs + settings.eps_rel * res.scale_d),
                                    res.gap / (settings.eps_abs + settings.eps_rel * res.scale_g)});
@@ -227,6 +221,7 @@ const QpResult& QpSolver::solve() {
   Impl& m = *impl_;
   if (!m.is_setup) throw std::logic_error("QpSolver::solve before setup");
   const auto t0 = Clock::now();
+  m.solve_start = t0;
   // The result's vectors keep their storage (run() overwrites them); info starts afresh.
   // Copying fresh_info reuses the message's capacity, where QpInfo{} would allocate.
   m.result.info = m.fresh_info;
@@ -236,13 +231,23 @@ const QpResult& QpSolver::solve() {
   info.kkt_form = m.kkt.form();
   info.kkt_backend = m.kkt.backend();
   m.run(info);
-  if (info.status == QpStatus::numerical_error) {
+  // Polishing (qp_polish.hpp) while the time limit allows, of the run whose outcome is
+  // reported: a numerical_error gets the conservative second run first (an interior-point
+  // answer, whose multipliers are the central ones where they are not unique: what the
+  // learning losses differentiate), and polishing only where that run ends without `solved`.
+  const auto polish_in_time = [&](QpInfo& i) {
+    if (!m.out_of_time(m.predicted_factor_seconds())) m.polish(i);
+  };
+  const bool rerun = info.status == QpStatus::numerical_error && !m.out_of_time(m.predicted_factor_seconds());
+  if (!rerun) polish_in_time(info);
+  if (rerun) {
     // Mehrotra's corrector can cycle on degenerate problems (relaxed-LCP QPs of the polygon
     // loss whose μ alternates between two values until "no progress"). One more run from
     // the start, with σ ≥ 0.1 and no second-order term (a plain primal–dual path-following
     // step), before the failure is reported; the first run's outcome is kept if it fails too.
     const QpResult first_result = m.result;
     const QpInfo first_info = info;
+    const detail::Iterate first_iterate = m.it;  // polishing starts from the reported run's iterate
     QpInfo second;
     second.kkt_form = info.kkt_form;
     second.kkt_backend = info.kkt_backend;
@@ -250,6 +255,7 @@ const QpResult& QpSolver::solve() {
     m.run(second);
     m.conservative = false;
     if (has_solution(second.status)) {
+      polish_in_time(second);
       second.iterations += first_info.iterations;
       second.refinement_steps += first_info.refinement_steps;
       second.message = std::string(to_string(second.status)) + " by the conservative second run (first run: " +
@@ -257,19 +263,26 @@ const QpResult& QpSolver::solve() {
       info = second;
     } else {
       m.result = first_result;
+      m.it = first_iterate;
       info = first_info;
       info.iterations += second.iterations;
       info.message += std::string("; conservative second run: ") + to_string(second.status);
+      polish_in_time(info);
     }
   }
-  if (m.settings.infeasibility_lps &&
+  if (m.settings.infeasibility_lps && !m.out_of_time(0.0) &&
       (info.status == QpStatus::max_iterations || info.status == QpStatus::numerical_error)) {
+    // The auxiliary LPs get what is left of the time limit (each its own solver).
+    QpSettings lp_settings = m.settings;
+    const auto remaining = [&] { return std::max(m.settings.time_limit - m.elapsed(), 1e-3); };
+    lp_settings.time_limit = remaining();
     QpResult cert = m.result;
-    if (detail::prove_primal_infeasible(m.problem, m.settings, cert)) {
+    if (detail::prove_primal_infeasible(m.problem, lp_settings, cert)) {
       m.result = cert;
       info.status = QpStatus::primal_infeasible;
       info.message = "primal infeasible (certificate from the auxiliary LP) after: " + info.message;
-    } else if (detail::prove_dual_infeasible(m.problem, m.settings, cert)) {
+    } else if (!m.out_of_time(0.0) &&
+               (lp_settings.time_limit = remaining(), detail::prove_dual_infeasible(m.problem, lp_settings, cert))) {
       m.result = cert;
       info.status = QpStatus::dual_infeasible;
       info.message = "dual infeasible (certificate from the auxiliary LP) after: " + info.message;

@@ -82,7 +82,8 @@ void QpSolver::setup(const QpProblem& problem) {
   problem.validate();
   impl_->build(problem);
   std::string message;
-  if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message))
+  if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message,
+                         impl_->settings.kkt_ordering))
     throw std::runtime_error("QpSolver::setup: " + message);
   impl_->is_setup = true;
   impl_->has_warm_start = false;
@@ -99,7 +100,8 @@ void QpSolver::update(const QpProblem& problem) {
   if (!impl_->refresh(problem)) {  // rows changed between equality/one/two-sided: new structure
     impl_->build(problem);
     std::string message;
-    if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message))
+    if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message,
+                         impl_->settings.kkt_ordering))
       throw std::runtime_error("QpSolver::update: " + message);
   }
   impl_->result.info = impl_->fresh_info;
@@ -127,7 +129,9 @@ void QpSolver::warm_start(const Vector& x, const Vector& y, const Vector& z, con
 bool QpSolver::Impl::factorize(QpInfo& info) {
   const auto t0 = Clock::now();
   for (;;) {
+    const auto tf = Clock::now();
     const sparse::FactorResult r = kkt.factorize(form, Db, Dg, rho, delta, delta_rows);
+    last_factor_seconds = seconds_since(tf);
     ++info.factorizations;
     if (r.ok()) break;
     if (delta_rows < delta) {  // first give the inequality block its regularization back
@@ -167,23 +171,27 @@ int QpSolver::Impl::newton_step() {
   return steps;
 }
 
+void QpSolver::Impl::load_unscaled_point(const Vector& x, const Vector& y, const Vector& z, const Vector& z_bounds) {
+  it.x = x.cwiseQuotient(form.Dx);
+  it.y.setZero(form.me);
+  for (Index k = 0; k < form.me; ++k) {
+    const Index s = form.eq_index[k];
+    const double v = form.eq_source[k] == detail::EqSource::a_row   ? y(s)
+                     : form.eq_source[k] == detail::EqSource::g_row ? z(s)
+                                                                    : z_bounds(s);
+    it.y(k) = form.c * v / form.Ee(k);
+  }
+  for (Index k = 0; k < form.mg; ++k) work.zg(k) = form.c * z(form.g_index[k]) / form.Eg(k);
+  work.zb = form.c * z_bounds.cwiseProduct(form.Dx);
+  it.compute_side_residuals(form);
+}
+
 bool QpSolver::Impl::initial_point(QpInfo& info) {
   detail::Workspace& w = work;
   it.init_sides(form);
   if (has_warm_start) {
-    it.x = warm.x.cwiseQuotient(form.Dx);
-    it.y.setZero(form.me);
-    for (Index k = 0; k < form.me; ++k) {
-      const Index s = form.eq_index[k];
-      const double v = form.eq_source[k] == detail::EqSource::a_row   ? warm.y(s)
-                       : form.eq_source[k] == detail::EqSource::g_row ? warm.z(s)
-                                                                      : warm.z_bounds(s);
-      it.y(k) = form.c * v / form.Ee(k);
-    }
-    Vector &zg = w.zg, &zb = w.zb;
-    for (Index k = 0; k < form.mg; ++k) zg(k) = form.c * warm.z(form.g_index[k]) / form.Eg(k);
-    zb = form.c * warm.z_bounds.cwiseProduct(form.Dx);
-    it.compute_side_residuals(form);
+    load_unscaled_point(warm.x, warm.y, warm.z, warm.z_bounds);
+    const Vector &zg = w.zg, &zb = w.zb;
     for (detail::Side* s : it.sides()) {
       const bool rows = (s == &it.g_lower || s == &it.g_upper);
       for (Index k = 0; k < s->size(); ++k) {

@@ -6,6 +6,11 @@
 
 #include <lcprelax/kkt/qp_solver.hpp>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
 namespace lcprelax {
 
 namespace detail {
@@ -15,6 +20,21 @@ struct Residuals {
   double primal = 0, dual = 0, gap = 0;
   double scale_p = 0, scale_d = 0, scale_g = 0;
 };
+
+/// Whether all three residuals are within factor·(eps_abs + eps_rel·scale).
+inline bool within(const Residuals& r, const QpSettings& s, double factor) {
+  return r.primal <= factor * (s.eps_abs + s.eps_rel * r.scale_p) &&
+         r.dual <= factor * (s.eps_abs + s.eps_rel * r.scale_d) &&
+         r.gap <= factor * (s.eps_abs + s.eps_rel * r.scale_g);
+}
+
+/// Worst ratio of residual to tolerance (∞ when a residual is not finite).
+inline double merit_of(const Residuals& r, const QpSettings& s) {
+  if (!std::isfinite(r.primal) || !std::isfinite(r.dual) || !std::isfinite(r.gap))
+    return std::numeric_limits<double>::infinity();
+  return std::max({r.primal / (s.eps_abs + s.eps_rel * r.scale_p), r.dual / (s.eps_abs + s.eps_rel * r.scale_d),
+                   r.gap / (s.eps_abs + s.eps_rel * r.scale_g)});
+}
 
 /// Work vectors of one QpSolver, sized by resize() whenever the form is (re)built, so
 /// that solve() and update() run without heap allocation.
@@ -73,6 +93,21 @@ struct QpSolver::Impl {
   double rho = 0, delta = 0;    ///< regularization of the last factorization
   double delta_rows = 0;        ///< its inequality-block part δ_g (δ, or 0 once dropped)
   double setup_seconds = 0;
+  /// Time limit bookkeeping: QpSettings::time_limit counts from the start of solve() and
+  /// covers both runs, polishing and the infeasibility LPs. A numeric factorization cannot
+  /// be interrupted, so none is started when the predicted time (the last measured one, or
+  /// before any the analysis' flop count at kAssumedFlopRate) would pass the limit.
+  std::chrono::steady_clock::time_point solve_start{};
+  double last_factor_seconds = 0;  ///< wall time of the last numeric KKT factorization
+  static constexpr double kAssumedFlopRate = 1e9;  ///< flops/s before the first measurement
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
+  }
+  double predicted_factor_seconds() const {
+    return last_factor_seconds > 0 ? last_factor_seconds : kkt.factor_flops() / kAssumedFlopRate;
+  }
+  /// Whether `upcoming` more seconds would pass time_limit.
+  bool out_of_time(double upcoming) const { return elapsed() + upcoming > settings.time_limit; }
 
   /// Copies p (compressed) and builds the standard form and the workspace.
   void build(const QpProblem& p);
@@ -92,7 +127,18 @@ struct QpSolver::Impl {
   /// sides' ds, dz; returns refinement steps.
   int newton_step();
   bool initial_point(QpInfo& info);  ///< false if the factorization failed
+  /// it.x, it.y and work.zg, work.zb from an unscaled point (x, y, z, z_bounds) of the
+  /// problem (warm starts, polishing), then the side residuals (vg = G̃x̃).
+  void load_unscaled_point(const Vector& x, const Vector& y, const Vector& z, const Vector& z_bounds);
   void run(QpInfo& info);
+  /// Solution polishing after a run that ended solved_inaccurate, numerical_error or
+  /// max_iterations (QpSettings::polish; qp_polish.hpp): replaces result and the status
+  /// when the polished point is accepted, records the attempt in info.
+  void polish(QpInfo& info);
+  /// After an accepted polish: the scaled iterate becomes the polished point (slacks and
+  /// multipliers at complementarity kPolishMu, qp_polish.hpp) and the KKT matrix is
+  /// factorized there for backward(); false if that factorization failed.
+  bool adopt_polished_point(QpInfo& info);
 };
 
 }  // namespace lcprelax

@@ -67,7 +67,7 @@ Vector ParameterSet::free() const {
   Vector xi(size());
   for (Index i = 0; i < size(); ++i) {
     const Parameter& p = (*this)[i];
-    xi(i) = p.transform == Transform::log ? std::log(p.value) : p.value;
+    xi(i) = p.transform == Transform::log ? std::log(p.value) : p.value / p.scale;
   }
   return xi;
 }
@@ -76,7 +76,7 @@ void ParameterSet::set_free(const Vector& xi) {
   if (xi.size() != size()) throw InputError("free parameter vector has the wrong length");
   Vector theta(size());
   for (Index i = 0; i < size(); ++i)
-    theta(i) = (*this)[i].transform == Transform::log ? std::exp(xi(i)) : xi(i);
+    theta(i) = (*this)[i].transform == Transform::log ? std::exp(xi(i)) : (*this)[i].scale * xi(i);
   set_values(theta);
 }
 
@@ -85,7 +85,7 @@ Vector ParameterSet::chain_gradient(const Vector& dl_dtheta) const {
   Vector g(size());
   for (Index i = 0; i < size(); ++i) {
     const Parameter& p = (*this)[i];
-    g(i) = !p.learn ? 0.0 : p.transform == Transform::log ? dl_dtheta(i) * p.value : dl_dtheta(i);
+    g(i) = !p.learn ? 0.0 : p.transform == Transform::log ? dl_dtheta(i) * p.value : dl_dtheta(i) * p.scale;
   }
   return g;
 }

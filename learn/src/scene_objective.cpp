@@ -3,6 +3,9 @@
 #include <lcprelax/learn/scene_objective.hpp>
 #include <lcprelax/models/simulator.hpp>
 
+#include "proximal_centers.hpp"
+
+#include <algorithm>
 #include <chrono>
 #include <exception>
 
@@ -20,7 +23,7 @@ struct SceneObjective::Workspace {
   Vector theta;  // the θ `world` carries
   WorldGradient gradient;
   SceneObjectiveStats stats;
-  Vector target;
+  Vector target, center;
   std::unique_ptr<RelaxedStepLossWorkspace> relaxed;  // keeps the QpSolver between islands
 };
 
@@ -31,6 +34,7 @@ std::string SceneLossSettings::validation_error() const {
   if (!e.empty()) return "relaxed." + e;
   e = convex.validation_error();
   if (!e.empty()) return "convex." + e;
+  if (relaxed_cold_iterations < 1) return "relaxed_cold_iterations: must be >= 1";
   return {};
 }
 
@@ -42,6 +46,11 @@ SceneObjective::SceneObjective(const SceneDataset& data, const SceneParameterMap
   data_.validate();
   if (map_.body_class().size() != data_.scene.world.bodies.size())
     throw InputError("scene parameters: the map was built for another scene");
+  centers_.resize(data_.transitions.size());
+}
+
+void SceneObjective::reset_centers() {
+  for (detail::ProximalCenters& c : centers_) c.clear();
 }
 
 SceneObjective::~SceneObjective() = default;
@@ -84,6 +93,7 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
   ++ws.stats.transitions;
   ws.stats.contacts += static_cast<long>(found.contacts.size());
 
+  if (settings_.method == LossMethod::relaxed) centers_[static_cast<std::size_t>(sample)].begin();
   std::vector<bool> in_island(world.bodies.size(), false);
   for (std::size_t k = 0; k < found.islands.size(); ++k) {
     t0 = std::chrono::steady_clock::now();
@@ -97,7 +107,21 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     StepLossResult r;
     switch (settings_.method) {
       case LossMethod::hard: r = hard_step_loss(s, ws.target, dt, settings_.hard); break;
-      case LossMethod::relaxed: r = ws.relaxed->evaluate(s, ws.target, dt); break;
+      case LossMethod::relaxed: {
+        detail::ProximalCenters& centers = centers_[static_cast<std::size_t>(sample)];
+        const bool warm = settings_.relaxed_warm_center && !centers.empty();
+        const int cold = warm ? centers.lookup(found.contacts, s, ws.center) : static_cast<int>(s.num_contacts());
+        ws.stats.cold_contacts += cold;
+        const int iterations = settings_.relaxed_warm_center && cold > 0
+                                   ? std::max(settings_.relaxed_cold_iterations, settings_.relaxed.proximal_iterations)
+                                   : 0;
+        const int solves0 = ws.relaxed->proximal_solves();
+        r = ws.relaxed->evaluate(s, ws.target, dt, warm ? &ws.center : nullptr, iterations);
+        ws.stats.proximal_solves += ws.relaxed->proximal_solves() - solves0;
+        if (settings_.relaxed_warm_center && has_solution(r.status))
+          centers.record(found.contacts, s, ws.relaxed->proximal_point());
+        break;
+      }
       case LossMethod::convex: r = convex_step_loss(s, ws.target, dt, settings_.convex); break;
     }
     ws.stats.seconds_loss += seconds_since(t0);
@@ -129,6 +153,8 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     ws.gradient.bodies[b].mass += -2.0 * dt * (e.x() * u.x() + e.y() * u.y()) / (body.mass * body.mass);
     ws.gradient.bodies[b].inertia += -2.0 * dt * e.z() * u.z() / (body.inertia * body.inertia);
   }
+  if (settings_.method == LossMethod::relaxed && settings_.relaxed_warm_center)
+    centers_[static_cast<std::size_t>(sample)].commit();
   out.gradient = map_.gradient(world, found.contacts, ws.gradient);
   return out;
 }
@@ -141,6 +167,8 @@ SceneObjectiveStats SceneObjective::stats() const {
     s.contacts += ws->stats.contacts;
     s.inaccurate_islands += ws->stats.inaccurate_islands;
     s.failed_islands += ws->stats.failed_islands;
+    s.cold_contacts += ws->stats.cold_contacts;
+    s.proximal_solves += ws->stats.proximal_solves;
     s.seconds_collision += ws->stats.seconds_collision;
     s.seconds_loss += ws->stats.seconds_loss;
     s.seconds_pullback += ws->stats.seconds_pullback;

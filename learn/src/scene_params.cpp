@@ -111,6 +111,10 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
       world.segments.size() * 4 != static_cast<std::size_t>(size_ - first_segment_))
     throw InputError("scene parameters: the world does not have the scene's bodies and static shapes");
   const SceneLearnFlags& f = settings_.learn;
+  auto scaled = [this](Parameter p, Index k) {  // ξ in units of the parameter's length scale
+    if (kind_[static_cast<std::size_t>(k)] != Kind::angle) p.scale = length_scale(k);
+    return p;
+  };
   auto positive = [](std::string name, double value, bool learn) {
     Parameter p{std::move(name), value, Transform::log};
     p.learn = learn;
@@ -130,7 +134,7 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
       const std::string v = prefix + "vertex" + std::to_string(i);
       Parameter px{v + ".x", body.shape.vertices[i].x()}, py{v + ".y", body.shape.vertices[i].y()};
       px.learn = py.learn = f.vertices;
-      theta.add(px), theta.add(py);
+      theta.add(scaled(px, theta.size())), theta.add(scaled(py, theta.size()));
     }
   }
   for (std::size_t h = 0; h < world.half_planes.size(); ++h) {
@@ -138,7 +142,7 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
     const std::string prefix = "half_plane" + std::to_string(h) + ".";
     Parameter angle{prefix + "angle", std::atan2(hp.normal.y(), hp.normal.x())}, offset{prefix + "offset", hp.offset};
     angle.learn = offset.learn = f.ground;
-    theta.add(angle), theta.add(offset);
+    theta.add(angle), theta.add(scaled(offset, theta.size()));
   }
   for (std::size_t s = 0; s < world.segments.size(); ++s) {
     const Segment& seg = world.segments[s];
@@ -148,7 +152,7 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
     for (int k = 0; k < 4; ++k) {
       Parameter p{prefix + names[k], values[k]};
       p.learn = f.ground;
-      theta.add(p);
+      theta.add(scaled(p, theta.size()));
     }
   }
   return theta;

@@ -47,15 +47,20 @@ std::string RelaxedStepLossSettings::validation_error() const {
   if (!(a2 >= 0.0) || !std::isfinite(a2)) return "a2: must be finite and >= 0";
   if (!(regularization > 0.0) || !std::isfinite(regularization)) return "regularization: must be finite and > 0";
   if (!(shift_balance > 0.0) || !std::isfinite(shift_balance)) return "shift_balance: must be finite and > 0";
+  if (proximal_iterations < 1) return "proximal_iterations: must be >= 1";
+  if (!(proximal_tolerance >= 0.0) || !std::isfinite(proximal_tolerance)) return "proximal_tolerance: must be finite and >= 0";
   const std::string e = qp.validation_error();
   return e.empty() ? e : "qp: " + e;
 }
 
 QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double dt,
-                          const RelaxedStepLossSettings& st) {
+                          const RelaxedStepLossSettings& st, const Vector* center) {
   if (const std::string e = st.validation_error(); !e.empty()) throw InputError("RelaxedStepLossSettings: " + e);
   validate_step_loss_input(s, target, dt);
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
+  if (center != nullptr && (center->size() != nc + nf || !center->allFinite()))
+    throw InputError("relaxed step loss: proximal center: expected " + std::to_string(nc + nf) +
+                     " finite entries [λ̃n; γ], got " + std::to_string(center->size()));
   const Index ln = nd, bp = nd + nc, bm = bp + nf, gm = bm + nf, nx = gm + nf;
   const Vector S = contact_scales(s, contact_bodies(s));
   const Vector m = s.minv.cwiseInverse();
@@ -87,6 +92,15 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
   const Vector phip = s.phi.cwiseMax(0.0) / dt;
   qp.q.segment(ln, nc) = st.a2 * S.cwiseProduct(phip);
   qp.r = st.a1 * (s.v_star - target).squaredNorm();
+  if (center != nullptr) {  // (b/2)(t(λ̃n − c_λ)² + (γ − c_γ)²/t): the linear and constant parts
+    for (Index f = 0; f < nf; ++f) {
+      const int c = s.friction_rows[static_cast<std::size_t>(f)];
+      const double b = st.a2 * s.mu(f) * S(c), cl = (*center)(c), cg = (*center)(nc + f);
+      qp.q(ln + c) -= t * b * cl;
+      qp.q(gm + f) -= b * cg / t;
+      qp.r += 0.5 * b * (t * cl * cl + cg * cg / t);
+    }
+  }
   // Momentum: M Δv − Jnᵀ S λ̃n − Jtᵀ S (β̃⁺ − β̃⁻) = 0.
   std::vector<Triplet> at, gt;
   at.reserve(static_cast<std::size_t>(nd + s.Jn.nonZeros() + 2 * s.Jt.nonZeros()));
@@ -136,7 +150,8 @@ struct RelaxedStepLossWorkspace::Impl {
   bool ready = false;
   QpResult empty;
   Vector shifts;
-  int setups = 0, updates = 0;
+  Vector proximal_point;  // [λ̃n; γ] of the last solve
+  int setups = 0, updates = 0, proximal_solves = 0;
   explicit Impl(const RelaxedStepLossSettings& s) : settings(s), solver(s.qp) {}
 };
 
@@ -152,12 +167,18 @@ const QpResult& RelaxedStepLossWorkspace::qp_result() const {
   return impl_->ready ? impl_->solver.result() : impl_->empty;
 }
 const Vector& RelaxedStepLossWorkspace::shifts() const { return impl_->shifts; }
+const Vector& RelaxedStepLossWorkspace::proximal_point() const { return impl_->proximal_point; }
+int RelaxedStepLossWorkspace::proximal_solves() const { return impl_->proximal_solves; }
 int RelaxedStepLossWorkspace::setups() const { return impl_->setups; }
 int RelaxedStepLossWorkspace::updates() const { return impl_->updates; }
 
-StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const Vector& target, double dt) {
+StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const Vector& target, double dt,
+                                                  const Vector* center, int iterations) {
+  if (iterations < 0) throw InputError("relaxed step loss: proximal iterations must be >= 0 (0: the settings')");
   const RelaxedStepLossSettings& st = impl_->settings;
-  const QpProblem qp = relaxed_step_qp(s, target, dt, st);  // validates
+  Vector c_used = center != nullptr ? *center : Vector();
+  bool centered = center != nullptr;
+  QpProblem qp = relaxed_step_qp(s, target, dt, st, centered ? &c_used : nullptr);  // validates
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
   const Index ln = nd, bp = nd + nc, bm = bp + nf, gm = bm + nf;
   StepLossResult r;
@@ -173,6 +194,7 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
   const Vector S = contact_scales(s, bodies);
   impl_->shifts.resize(nf);
   for (Index f = 0; f < nf; ++f) impl_->shifts(f) = st.a2 * s.mu(f) * S(s.friction_rows[static_cast<std::size_t>(f)]);
+  impl_->proximal_point = Vector::Zero(nc + nf);
   if (nc == 0) {  // no contact: ℓ = a1‖v* − v̄‖²
     r.status = ContactStatus::solved;
     r.v_next = s.v_star;
@@ -180,16 +202,35 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
     r.grad.v_star = 2.0 * st.a1 * (s.v_star - target);
     return r;
   }
-  if (impl_->ready && impl_->solver.can_update(qp)) {
-    impl_->solver.update(qp);
-    ++impl_->updates;
-  } else {
-    impl_->solver.setup(qp);
-    impl_->ready = true;
-    ++impl_->setups;
+  // Proximal point iterations (header comment): each solve re-centres the shift at the
+  // previous solution; the gradient is the last solve's, at its centre.
+  const QpResult* last = nullptr;
+  const int max_it = iterations > 0 ? iterations : st.proximal_iterations;
+  for (int it = 0; it < max_it; ++it) {
+    if (it > 0) qp = relaxed_step_qp(s, target, dt, st, &c_used);
+    if (impl_->ready && impl_->solver.can_update(qp)) {
+      impl_->solver.update(qp);
+      ++impl_->updates;
+    } else {
+      impl_->solver.setup(qp);
+      impl_->ready = true;
+      ++impl_->setups;
+    }
+    ++impl_->proximal_solves;
+    const QpResult& res = impl_->solver.solve();
+    last = &res;
+    r.work += res.info.iterations;
+    if (!has_solution(res.info.status)) break;
+    Vector& xp = impl_->proximal_point;
+    xp << res.x.segment(ln, nc), res.x.segment(gm, nf);
+    const double moved = centered ? (xp - c_used).lpNorm<Eigen::Infinity>() : kInf;
+    if (moved <= st.proximal_tolerance * std::max(1.0, xp.lpNorm<Eigen::Infinity>())) break;
+    if (it + 1 < max_it) {
+      c_used = xp;
+      centered = true;
+    }
   }
-  const QpResult& res = impl_->solver.solve();
-  r.work = res.info.iterations;
+  const QpResult& res = *last;
   if (!has_solution(res.info.status)) {
     r.status = ContactStatus::failed;
     r.message = std::string("relaxed: qp ") + to_string(res.info.status) + ": " + res.info.message;
@@ -227,7 +268,8 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
   Vector dS = a2 * lnt.cwiseProduct(s.phi.cwiseMax(0.0)) / dt - jny.cwiseProduct(lnt);
   for (Index f = 0; f < nf; ++f) {
     const Index c = s.friction_rows[static_cast<std::size_t>(f)];
-    const double sq = t * lnt(c) * lnt(c) + gam(f) * gam(f) / t;
+    const double dl = centered ? lnt(c) - c_used(c) : lnt(c), dg = centered ? gam(f) - c_used(nc + f) : gam(f);
+    const double sq = centered && !st.centred_shift_in_gradient ? 0.0 : t * dl * dl + dg * dg / t;
     r.grad.mu(f) = a2 * Sf(f) * gam(f) * lnt(c) + 0.5 * a2 * Sf(f) * sq + zg(f) * lnt(c);
     dS(c) += a2 * s.mu(f) * gam(f) * lnt(c) + 0.5 * a2 * s.mu(f) * sq - jty(f) * bdiff(f);
   }
@@ -238,9 +280,9 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
 }
 
 StepLossResult relaxed_step_loss(const ContactSystem& s, const Vector& target, double dt,
-                                 const RelaxedStepLossSettings& settings) {
+                                 const RelaxedStepLossSettings& settings, const Vector* center) {
   RelaxedStepLossWorkspace ws(settings);
-  return ws.evaluate(s, target, dt);
+  return ws.evaluate(s, target, dt, center);
 }
 
 }  // namespace lcprelax::learn

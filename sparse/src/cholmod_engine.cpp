@@ -1,5 +1,6 @@
 // CHOLMOD engine: views a compressed lcprelax::SparseMatrix as a cholmod_sparse (upper
-// triangle, no copy), analyses once with AMD, refactorizes numerically, solves in place,
+// triangle, no copy), analyses once (AMD, or the fewest-flops of AMD, METIS and NESDIS:
+// CholmodOrdering in cholmod_ldlt.hpp), refactorizes numerically, solves in place,
 // and turns every CHOLMOD outcome into a FactorResult (CHOLMOD never prints or aborts).
 #include "cholmod_engine.hpp"
 
@@ -32,8 +33,8 @@ FactorResult from_common(const cholmod_common& c, const char* where) {
 
 }  // namespace
 
-CholmodEngine::CholmodEngine(CholmodKind kind, double dbound)
-    : kind_(kind), dbound_(dbound > 0.0 ? dbound : 0.0) {
+CholmodEngine::CholmodEngine(CholmodKind kind, double dbound, CholmodOrdering ordering)
+    : kind_(kind), dbound_(dbound > 0.0 ? dbound : 0.0), ordering_(ordering) {
   cholmod_start(&common_);
   common_.print = 0;
   common_.error_handler = silent_error_handler;
@@ -41,7 +42,7 @@ CholmodEngine::CholmodEngine(CholmodKind kind, double dbound)
       kind_ == CholmodKind::simplicial_ldlt ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
   common_.final_ll = 0;  // a simplicial factor stays LDLᵀ (never converted to LLᵀ)
   common_.final_asis = 1;
-  common_.nmethods = 1;  // AMD only, chosen once in analyze()
+  common_.nmethods = 1;  // one method per cholmod_analyze call; analyze() compares them
   common_.method[0].ordering = CHOLMOD_AMD;
   common_.postorder = 1;
   common_.dbound = kind_ == CholmodKind::simplicial_ldlt ? dbound_ : 0.0;
@@ -64,6 +65,27 @@ void CholmodEngine::release() {
   n_ = 0;
   factored_ = false;
   inertia_ = Inertia{};
+  ordering_used_ = -1;
+  flops_ = 0.0;
+}
+
+const char* CholmodEngine::ordering_name() const {
+  switch (ordering_used_) {
+    case CHOLMOD_AMD: return "amd";
+    case CHOLMOD_METIS: return "metis";
+    case CHOLMOD_NESDIS: return "nesdis";
+    case CHOLMOD_NATURAL: return "natural";
+    default: return "";
+  }
+}
+
+cholmod_factor* CholmodEngine::analyze_with(cholmod_sparse& a, int ordering, double& flops) {
+  common_.method[0].ordering = ordering;
+  common_.status = CHOLMOD_OK;
+  cholmod_factor* L = cholmod_analyze(&a, &common_);
+  if (L && common_.status < CHOLMOD_OK) cholmod_free_factor(&L, &common_);
+  flops = L ? common_.method[0].fl : 0.0;
+  return L;
 }
 
 cholmod_sparse CholmodEngine::view(const SparseMatrix& A) const {
@@ -94,12 +116,30 @@ FactorResult CholmodEngine::analyze(const SparseMatrix& A) {
   CompressedRef ref(A);
   pattern_.assign(ref.get());
   cholmod_sparse a = view(ref.get());
-  common_.status = CHOLMOD_OK;
-  L_ = cholmod_analyze(&a, &common_);
-  if (!L_ || common_.status < CHOLMOD_OK) {
+  L_ = analyze_with(a, CHOLMOD_AMD, flops_);
+  if (!L_) {
     FactorResult r = from_common(common_, "cholmod_analyze");
     release();
     return r;
+  }
+  ordering_used_ = L_->ordering;
+  if (ordering_ == CholmodOrdering::best && flops_ > kNestedDissectionFlops) {
+    // Nested dissection where AMD's factor is expensive; the fewest predicted flops wins. A
+    // failed analysis (e.g. METIS out of memory) only drops that candidate.
+    for (const int candidate : {CHOLMOD_METIS, CHOLMOD_NESDIS}) {
+      double fl = 0.0;
+      cholmod_factor* L = analyze_with(a, candidate, fl);
+      if (L && fl < flops_) {
+        cholmod_free_factor(&L_, &common_);
+        L_ = L;
+        flops_ = fl;
+        ordering_used_ = L_->ordering;  // CHOLMOD's METIS falls back to AMD on too dense graphs
+      } else if (L) {
+        cholmod_free_factor(&L, &common_);
+      }
+    }
+    common_.method[0].ordering = CHOLMOD_AMD;
+    common_.status = CHOLMOD_OK;
   }
   n_ = static_cast<Index>(A.rows());
   if (kind_ == CholmodKind::simplicial_ldlt && n_ > 0) return analyze_prepermuted(ref.get());
@@ -349,7 +389,7 @@ long CholmodEngine::factor_nnz() const {
 }
 
 std::unique_ptr<CholmodEngine> CholmodEngine::clone_analysis() const {
-  auto clone = std::make_unique<CholmodEngine>(kind_, dbound_);
+  auto clone = std::make_unique<CholmodEngine>(kind_, dbound_, ordering_);
   if (!L_) return clone;
   cholmod_common& c = clone->common_;
   clone->L_ = cholmod_copy_factor(L_, &c);
@@ -366,6 +406,8 @@ std::unique_ptr<CholmodEngine> CholmodEngine::clone_analysis() const {
   clone->slot_ = slot_;
   clone->S_ = S_;
   clone->n_ = n_;
+  clone->ordering_used_ = ordering_used_;
+  clone->flops_ = flops_;
   return clone;
 }
 

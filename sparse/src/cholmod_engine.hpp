@@ -16,8 +16,9 @@ enum class CholmodKind { simplicial_ldlt, supernodal_llt };
 
 class CholmodEngine {
  public:
-  /// dbound > 0 enables CHOLMOD's dynamic regularization of tiny LDLᵀ pivots.
-  CholmodEngine(CholmodKind kind, double dbound);
+  /// dbound > 0 enables CHOLMOD's dynamic regularization of tiny LDLᵀ pivots; ordering:
+  /// see CholmodOrdering (cholmod_ldlt.hpp).
+  CholmodEngine(CholmodKind kind, double dbound, CholmodOrdering ordering = CholmodOrdering::best);
   ~CholmodEngine();
   CholmodEngine(const CholmodEngine&) = delete;
   CholmodEngine& operator=(const CholmodEngine&) = delete;
@@ -27,6 +28,10 @@ class CholmodEngine {
   /// B ← A⁻¹B; uses workspace held by the engine (not safe to call concurrently).
   FactorResult solve(Eigen::Ref<DenseMatrix> B);
   long factor_nnz() const;
+  /// Flops of one numeric factorization predicted by analyze() (CHOLMOD's fl).
+  double factor_flops() const { return L_ ? flops_ : 0.0; }
+  /// "amd", "metis" or "nesdis": the ordering analyze() kept ("" before).
+  const char* ordering_name() const;
   Index rows() const { return L_ ? n_ : 0; }
   /// Signs of D of the last successful LDLᵀ factorization (all zero otherwise).
   Inertia inertia() const { return inertia_; }
@@ -39,12 +44,17 @@ class CholmodEngine {
   FactorResult failed_pivot();
   FactorResult scan_diagonal();
 
+  /// cholmod_analyze of a with one ordering method; null on failure (status reset).
+  cholmod_factor* analyze_with(cholmod_sparse& a, int ordering, double& flops);
   FactorResult analyze_prepermuted(const SparseMatrix& A);
   cholmod_sparse view_permuted();
   Index input_column(Index pivot) const;
 
   CholmodKind kind_;
   double dbound_;
+  CholmodOrdering ordering_;
+  int ordering_used_ = -1;    // CHOLMOD_AMD, CHOLMOD_METIS or CHOLMOD_NESDIS after analyze()
+  double flops_ = 0.0;        // predicted flops of the kept ordering
   // Simplicial LDLᵀ is factorized from a pre-permuted copy S = upper(P A Pᵀ) under the
   // natural ordering: CHOLMOD then factorizes S in place, where with its own permutation
   // it would build A(p,p) by two transposes (allocating) on every factorize (7.5% of a

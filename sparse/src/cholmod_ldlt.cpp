@@ -16,9 +16,9 @@ FactorResult moved_from() {
 }
 }  // namespace
 
-CholmodLdlt::CholmodLdlt(double dynamic_regularization)
+CholmodLdlt::CholmodLdlt(double dynamic_regularization, CholmodOrdering ordering)
     : impl_(std::make_unique<Impl>(Impl{std::make_unique<detail::CholmodEngine>(
-          detail::CholmodKind::simplicial_ldlt, dynamic_regularization)})) {}
+          detail::CholmodKind::simplicial_ldlt, dynamic_regularization, ordering)})) {}
 
 CholmodLdlt::~CholmodLdlt() = default;
 CholmodLdlt::CholmodLdlt(CholmodLdlt&&) noexcept = default;
@@ -42,6 +42,10 @@ FactorResult CholmodLdlt::solve(Eigen::Ref<DenseMatrix> B) const {
 }
 
 long CholmodLdlt::factor_nnz() const { return impl_ ? impl_->engine->factor_nnz() : 0; }
+
+double CholmodLdlt::factor_flops() const { return impl_ ? impl_->engine->factor_flops() : 0.0; }
+
+const char* CholmodLdlt::ordering_name() const { return impl_ ? impl_->engine->ordering_name() : ""; }
 
 Index CholmodLdlt::rows() const { return impl_ ? impl_->engine->rows() : 0; }
 

@@ -17,9 +17,9 @@ FactorResult moved_from() {
 }
 }  // namespace
 
-CholmodLlt::CholmodLlt()
+CholmodLlt::CholmodLlt(CholmodOrdering ordering)
     : impl_(std::make_unique<Impl>(Impl{std::make_unique<detail::CholmodEngine>(
-          detail::CholmodKind::supernodal_llt, 0.0)})) {}
+          detail::CholmodKind::supernodal_llt, 0.0, ordering)})) {}
 
 CholmodLlt::~CholmodLlt() = default;
 CholmodLlt::CholmodLlt(CholmodLlt&&) noexcept = default;
@@ -43,6 +43,10 @@ FactorResult CholmodLlt::solve(Eigen::Ref<DenseMatrix> B) const {
 }
 
 long CholmodLlt::factor_nnz() const { return impl_ ? impl_->engine->factor_nnz() : 0; }
+
+double CholmodLlt::factor_flops() const { return impl_ ? impl_->engine->factor_flops() : 0.0; }
+
+const char* CholmodLlt::ordering_name() const { return impl_ ? impl_->engine->ordering_name() : ""; }
 
 Index CholmodLlt::rows() const { return impl_ ? impl_->engine->rows() : 0; }
 

@@ -63,6 +63,14 @@ struct QpInfo {
   double solve_seconds = 0.0;
   double factor_seconds = 0.0;   ///< part of solve_seconds spent factorizing
   double backward_seconds = 0.0; ///< last backward()
+  /// Solution polishing (QpSettings::polish): whether it ran (the interior point ended
+  /// solved_inaccurate, numerical_error or max_iterations), how many reduced KKT systems it
+  /// factorized, and whether its point replaced the interior point's (then message says so
+  /// and the residuals above are the polished point's).
+  bool polish_attempted = false;
+  bool polish_accepted = false;
+  int polish_rounds = 0;
+  double polish_seconds = 0.0;   ///< part of solve_seconds spent polishing
 };
 
 /// Certificates: for primal_infeasible, (y, z, z_bounds) normalized to ∞-norm 1 satisfy

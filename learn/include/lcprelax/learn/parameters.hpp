@@ -3,10 +3,12 @@
 //
 // Each parameter has a name (e.g. "mu", "mass", "vertex3.x"), a value in SI units, a
 // transform and optional bounds:
-//   identity:  θ = ξ                    (ground height, vertex coordinates, angles)
+//   identity:  θ = s ξ                  (ground height, vertex coordinates, angles; s = scale)
 //   log:       θ = exp(ξ), ξ = log θ    (μ, mass, inertia: positivity by construction)
 // The optimizer works on ξ; losses return ∂ℓ/∂θ and chain_gradient() maps it to
-// ∂ℓ/∂ξ = ∂ℓ/∂θ · dθ/dξ (dθ/dξ = 1 or θ). Bounds [lower, upper] apply to θ and are
+// ∂ℓ/∂ξ = ∂ℓ/∂θ · dθ/dξ (dθ/dξ = s or θ). The scale s (> 0, default 1, same unit as θ)
+// makes an identity parameter's ξ dimensionless, e.g. a vertex coordinate in units of its
+// shape's radius, so that one learning rate means the same relative step for every kind. Bounds [lower, upper] apply to θ and are
 // enforced by projection after each optimizer step (clamp()); a log parameter must have
 // lower > 0 or no lower bound. A parameter with learn = false keeps its value: its gradient
 // entry is zeroed by chain_gradient().
@@ -27,6 +29,7 @@ struct Parameter {
   double lower = -std::numeric_limits<double>::infinity();
   double upper = std::numeric_limits<double>::infinity();
   bool learn = true;
+  double scale = 1.0;  ///< s of the identity transform (θ = s ξ); ignored by log
 };
 
 class ParameterSet {

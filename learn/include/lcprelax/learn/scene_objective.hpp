@@ -19,6 +19,14 @@
 // no solution (ContactStatus failed) fails as a whole (SampleResult::ok = false, message
 // naming the island): a failed island is never averaged in. Counts of islands and failures
 // are kept (stats()).
+// Relaxed method: each transition keeps its islands' last solution (λ̃n, γ) as the next
+// evaluation's proximal centre (step_loss_relaxed.hpp), matched contact by contact (body
+// pair and narrow-phase feature), so that over the epochs of training the convexity shift's
+// bias vanishes at the cost of one solve per evaluation; a contact not seen before is
+// centred at 0 (counted in stats().cold_contacts), and its island gets
+// relaxed_cold_iterations proximal iterations (the biased centre 0 would otherwise enter
+// that epoch's gradient). relaxed_warm_center = false: every evaluation starts centred at 0
+// with the relaxed settings' proximal_iterations.
 // Contacts are found at the CURRENT θ (a learned vertex or ground moves them), then held
 // fixed while differentiating (a contact appearing or disappearing is a kink).
 #include <lcprelax/learn/scene_dataset.hpp>
@@ -34,12 +42,17 @@
 #include <vector>
 
 namespace lcprelax::learn {
+namespace detail {
+class ProximalCenters;
+}
 
 struct SceneLossSettings {
   LossMethod method = LossMethod::relaxed;
   HardStepLossSettings hard;
   RelaxedStepLossSettings relaxed;
   ConvexStepLossSettings convex;
+  bool relaxed_warm_center = true;  ///< carry each island's proximal centre across evaluations
+  int relaxed_cold_iterations = 5;  ///< proximal iterations of an island with a new contact (≥ 1)
   std::string validation_error() const;  ///< empty if valid, else names the field
 };
 
@@ -50,6 +63,8 @@ struct SceneObjectiveStats {
   long contacts = 0;
   long inaccurate_islands = 0;  ///< ContactStatus::solved_inaccurate (kept, usable)
   long failed_islands = 0;      ///< no solution: their transition failed
+  long cold_contacts = 0;       ///< relaxed: contacts evaluated without a stored centre
+  long proximal_solves = 0;     ///< relaxed QP solves (proximal iterations included)
   double seconds_collision = 0.0, seconds_loss = 0.0, seconds_pullback = 0.0;
 };
 
@@ -66,6 +81,8 @@ class SceneObjective : public Objective {
 
   SceneObjectiveStats stats() const;
   void reset_stats();
+  /// Forgets the relaxed method's stored proximal centres (the next evaluations start at 0).
+  void reset_centers();
   const SceneLossSettings& settings() const { return settings_; }
 
  private:
@@ -74,6 +91,7 @@ class SceneObjective : public Objective {
   const SceneParameterMap& map_;
   SceneLossSettings settings_;
   std::vector<std::unique_ptr<Workspace>> workspaces_;
+  std::vector<detail::ProximalCenters> centers_;  // per transition
 };
 
 }  // namespace lcprelax::learn

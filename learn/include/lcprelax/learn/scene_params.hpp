@@ -70,7 +70,7 @@ class SceneParameterMap {
 
   enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end };
   Kind kind(Index k) const { return kind_[static_cast<std::size_t>(k)]; }
-  /// Length scale of parameter k (m): its class's radius for vertices, the mean class radius
+  /// Length scale of parameter k (m), also its Parameter::scale (ξ = θ/scale): its class's radius for vertices, the mean class radius
   /// for offsets and segment ends, 1 otherwise.
   double length_scale(Index k) const { return scale_[static_cast<std::size_t>(k)]; }
 

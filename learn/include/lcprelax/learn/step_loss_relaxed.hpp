@@ -30,6 +30,23 @@
 // losses differ (without friction, μ = 0, they are the same QP; tests/learn_step_loss_relaxed_test).
 // Hessian: Δv: 2(a1 I + a2 M); λ̃n: ε + t b; β̃±: ε; γ: ε + b/t; (λ̃n, γ): a2 μ S.
 //
+// The shift biases ℓ (at the true parameters it adds (b_f/2)(t λ̃n² + γ²/t) > 0 per row and
+// favours small μ and λn). A proximal CENTRE c = (c_λ (nc), c_γ (nf)) removes the bias:
+// the shift becomes (b_f/2)(t (λ̃n(f) − c_λ)² + (γ_f − c_γ,f)²/t), same Hessian, and
+// re-centring at the solution is the proximal point method (Rockafellar 1976) on the
+// unshifted, nonconvex QP: its fixed points are the unshifted QP's KKT points, where the
+// shift term and its gradient vanish, so ℓ → min of a1‖v⁺ − v̄‖² + a2 zᵀw + ε-terms, which
+// is (ε/2)‖z̃‖² ≈ 0 at the truth on LCP data. `proximal_iterations` solves per evaluation
+// (each an update() of the same pattern), ending early once the solution moves less than
+// proximal_tolerance·max(1, ‖(λ̃n, γ)‖∞); callers that evaluate the same sample repeatedly
+// (training epochs) pass the previous solution, proximal_point(), as the next centre. The
+// gradient is the envelope theorem at the last solve with its centre held fixed. With a
+// centre it omits, by default, the shift's own dependence on μ and S (the (b/2)(…)² terms
+// below): that is the gradient of the UNSHIFTED problem's Lagrangian at the solution, the
+// proximal-point estimate of the unshifted loss's gradient, equal to it at a fixed point;
+// the omitted term (∂b/∂θ)/2·‖x − c‖² ≥ 0 would otherwise push μ and masses down while the
+// centres lag behind θ. centred_shift_in_gradient = true gives the exact gradient of ℓ_c.
+//
 // Gradient by the envelope theorem (Milgrom & Segal 2002): with the QpSolver's multipliers
 // (qp_problem.hpp: Px + q + Aᵀy + Gᵀz + z_bounds = 0, z < 0 on an active lower side), ℓ
 // equals the Lagrangian f + yᵀ(Ax − b) + zᵀ(Gx − l) at the optimum, so ∂ℓ/∂data is its
@@ -39,6 +56,8 @@
 //     ∂ℓ/∂v* = 2a1(v⁺ − v̄) + a2 m∘Δv + Jnᵀz_n + Jtᵀ(z_p − z_m)
 //     ∂ℓ/∂φ_c = (a2 S_c λ̃n_c + z_n,c)/Δt where φ_c > 0, else 0
 //     ∂ℓ/∂μ_f = a2 S_f γ_f λ̃n(f) + (a2 S_f/2)(t λ̃n(f)² + γ_f²/t) + z_g,f λ̃n(f)
+//               (with a centre and centred_shift_in_gradient: λ̃n − c_λ and γ − c_γ inside
+//               the square, here and in ∂ℓ/∂S_c; with a centre otherwise: no square term)
 //     ∂ℓ/∂minv_k = −m_k²(a2 Δv_k v⁺_k + y_k Δv_k)  [+ −S_c² ∂ℓ/∂S_c on each contact's bodies' x entry]
 //     ∂ℓ/∂S_c = a2 λ̃n_c φ⁺_c/Δt + Σ_f(c) (a2 μ_f γ_f λ̃n_c + (a2 μ_f/2)(t λ̃n_c² + γ_f²/t)
 //               − (Jt y)_f (β̃⁺ − β̃⁻)_f) − (Jn y)_c λ̃n_c.
@@ -59,16 +78,19 @@ struct RelaxedStepLossSettings {
   double a2 = 0.1;              ///< weight of zᵀw (the polygon's), ≥ 0
   double regularization = 1e-6; ///< ε (velocity units), > 0 (the polygon's)
   double shift_balance = 1.0;   ///< t of the per-contact shift diag(t b, b/t), > 0
+  int proximal_iterations = 1;  ///< solves per evaluation, each re-centred (≥ 1; 1: one solve)
+  double proximal_tolerance = 1e-9;  ///< relative move of (λ̃n, γ) that ends the iterations early
+  bool centred_shift_in_gradient = false;  ///< with a centre: exact ∂ℓ_c (true) or the unshifted estimate
   QpSettings qp;                ///< interior point (automatic backend: CHOLMOD above dense_max_kkt)
   /// Empty if valid, else a message naming the first bad field.
   std::string validation_error() const;
 };
 
 /// The lifted QP for island s (variables [Δv (3·bodies), λ̃n (nc), β̃⁺, β̃⁻, γ (nf each)];
-/// rows of G: [w_n (nc), w_β⁺, w_β⁻, w_γ/S (nf each)]; A: the nd momentum rows). Validates
-/// (throws InputError).
+/// rows of G: [w_n (nc), w_β⁺, w_β⁻, w_γ/S (nf each)]; A: the nd momentum rows), the shift
+/// centred at `center` ([λ̃n (nc); γ (nf)]) or at 0 when null. Validates (throws InputError).
 QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double dt,
-                          const RelaxedStepLossSettings& settings);
+                          const RelaxedStepLossSettings& settings, const Vector* center = nullptr);
 
 /// A per-thread workspace: keeps the QpSolver and reuses its symbolic analysis
 /// (QpSolver::update) while the island's sparsity pattern repeats (same bodies, contacts
@@ -84,8 +106,14 @@ class RelaxedStepLossWorkspace {
 
   const RelaxedStepLossSettings& settings() const;
   /// ℓ, v⁺ and ∂ℓ/∂data (envelope theorem) for island s, observed next velocity `target`
-  /// (3 per body), dt (s). Throws InputError on invalid data.
-  StepLossResult evaluate(const ContactSystem& s, const Vector& target, double dt);
+  /// (3 per body), dt (s), the first solve's shift centred at `center` ([λ̃n; γ], nc + nf
+  /// entries) or at 0 when null. Throws InputError on invalid data or a centre of the wrong size.
+  /// `iterations` > 0 overrides settings().proximal_iterations for this call.
+  StepLossResult evaluate(const ContactSystem& s, const Vector& target, double dt,
+                          const Vector* center = nullptr, int iterations = 0);
+  /// [λ̃n; γ] of the last evaluate()'s last solve (zeros without contact): the next centre.
+  const Vector& proximal_point() const;
+  int proximal_solves() const;  ///< QP solves done by all evaluate() calls
   /// The last evaluate()'s QP result (x, y, z) and per-friction-row shifts b_f.
   const QpResult& qp_result() const;
   const Vector& shifts() const;
@@ -99,6 +127,6 @@ class RelaxedStepLossWorkspace {
 
 /// One-shot: a fresh workspace.
 StepLossResult relaxed_step_loss(const ContactSystem& s, const Vector& target, double dt,
-                                 const RelaxedStepLossSettings& settings = {});
+                                 const RelaxedStepLossSettings& settings = {}, const Vector* center = nullptr);
 
 }  // namespace lcprelax::learn

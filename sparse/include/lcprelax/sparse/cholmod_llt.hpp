@@ -2,7 +2,9 @@
 // CHOLMOD supernodal LLᵀ for symmetric positive definite matrices. A pivot ≤ 0 gives
 // FactorStatus::not_positive_definite with the failing column in FactorResult::pivot.
 // Each numeric factorization allocates inside CHOLMOD (the permuted transpose of A, the
-// dense update workspace, OpenMP teams); solves reuse their workspace.
+// dense update workspace, OpenMP teams); solves reuse their workspace. Ordering: as
+// CholmodLdlt's (CholmodOrdering, cholmod_ldlt.hpp).
+#include <lcprelax/sparse/cholmod_ldlt.hpp>
 #include <lcprelax/sparse/factorization.hpp>
 
 #include <memory>
@@ -11,7 +13,7 @@ namespace lcprelax::sparse {
 
 class CholmodLlt final : public Factorization {
  public:
-  CholmodLlt();
+  explicit CholmodLlt(CholmodOrdering ordering = CholmodOrdering::best);
   ~CholmodLlt() override;
   CholmodLlt(const CholmodLlt&) = delete;
   CholmodLlt& operator=(const CholmodLlt&) = delete;
@@ -22,8 +24,11 @@ class CholmodLlt final : public Factorization {
   FactorResult factorize(const SparseMatrix& A) override;
   FactorResult solve(Eigen::Ref<DenseMatrix> B) const override;
   long factor_nnz() const override;
+  double factor_flops() const override;
   Index rows() const override;
   const char* name() const override { return "cholmod_llt"; }
+  /// See CholmodLdlt::ordering_name().
+  const char* ordering_name() const;
   /// See CholmodLdlt::clone_analysis().
   CholmodLlt clone_analysis() const;
 

@@ -70,6 +70,9 @@ class Factorization {
   virtual FactorResult solve_transposed(Eigen::Ref<DenseMatrix> B) const { return solve(B); }
   /// Number of entries in the factor(s): predicted after analyze(), actual after factorize().
   virtual long factor_nnz() const = 0;
+  /// Floating-point operations of one numeric factorization as predicted by the symbolic
+  /// analysis (0 when the backend does not predict them).
+  virtual double factor_flops() const { return 0.0; }
   /// Dimension of the analysed matrix (0 before analyze()).
   virtual Index rows() const = 0;
   virtual const char* name() const = 0;

@@ -1,0 +1,354 @@
+// Solution polishing on the guessed active set (method in qp_polish.hpp) and
+// QpSolver::Impl::polish, which accepts or rejects the polished point.
+#include "qp_polish.hpp"
+
+#include <lcprelax/sparse/cholmod_ldlt.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace lcprelax {
+namespace detail {
+namespace {
+
+template <class V>
+double inf_norm(const Eigen::MatrixBase<V>& v) {
+  return v.size() ? v.template lpNorm<Eigen::Infinity>() : 0.0;
+}
+
+// Active side per kept row of G̃ (rows) and per variable (bounds): 0 inactive, −1 lower,
+// +1 upper. Fixed variables (Ẽ rows) have no side here.
+struct ActiveSet {
+  std::vector<signed char> rows, bounds;
+  bool operator==(const ActiveSet& o) const { return rows == o.rows && bounds == o.bounds; }
+};
+
+void mark_side(const Side& side, std::vector<signed char>& out, Vector& zbest) {
+  for (Index k = 0; k < side.size(); ++k) {
+    const Index q = side.idx[k];
+    if (side.s(k) < side.z(k) && side.z(k) > zbest(q)) {
+      out[q] = side.upper ? 1 : -1;
+      zbest(q) = side.z(k);
+    }
+  }
+}
+
+ActiveSet guess_active_set(const StandardForm& f, const Iterate& it) {
+  ActiveSet a;
+  a.rows.assign(f.mg, 0);
+  a.bounds.assign(f.n, 0);
+  Vector zr = Vector::Zero(f.mg), zb = Vector::Zero(f.n);
+  mark_side(it.g_lower, a.rows, zr);
+  mark_side(it.g_upper, a.rows, zr);
+  mark_side(it.b_lower, a.bounds, zb);
+  mark_side(it.b_upper, a.bounds, zb);
+  return a;
+}
+
+// Scaled polished point: x̃ (n), ỹ (me), ζ (mg; 0 at inactive rows).
+struct ScaledPoint {
+  Vector x, y, zg;
+};
+
+// Index maps of a reduced system: free variables (col), active rows (pos), the values of
+// the variables fixed at a bound (xb; 0 at free ones) and the dimensions.
+struct Reduced {
+  std::vector<Index> col, pos;
+  Vector xb;
+  Index nF = 0, mA = 0, N = 0;
+};
+
+Reduced reduce(const StandardForm& f, const ActiveSet& a) {
+  Reduced s;
+  s.col.assign(f.n, -1);
+  s.pos.assign(f.mg, -1);
+  s.xb = Vector::Zero(f.n);
+  for (Index j = 0; j < f.n; ++j) {
+    if (a.bounds[j] == 0)
+      s.col[j] = s.nF++;
+    else
+      s.xb(j) = a.bounds[j] < 0 ? f.xl(j) : f.xu(j);
+  }
+  for (Index k = 0; k < f.mg; ++k)
+    if (a.rows[k] != 0) s.pos[k] = s.mA++;
+  s.N = s.nF + f.me + s.mA;
+  return s;
+}
+
+// res = r − K0 v of the reduced system, i.e. the dual residual −(P̃x̃ + q̃ + Ẽᵀỹ + G̃_Aᵀζ)
+// on the free variables and the primal residuals b̃ − Ẽx̃, h − G̃_A x̃ (x̃ = xb + free
+// part of v), accumulated in long double: the refinement then reaches the roundoff of
+// the solution rather than that of the residual's terms.
+void reduced_residual(const StandardForm& f, const ActiveSet& a, const Reduced& s, const Vector& v, Vector& res,
+                      std::vector<long double>& acc) {
+  const Index n = f.n, me = f.me, nF = s.nF;
+  acc.assign(static_cast<size_t>(n + me + f.mg), 0.0L);
+  long double* dual = acc.data();
+  long double* prim_e = dual + n;
+  long double* prim_g = prim_e + me;
+  const auto x = [&](Index j) { return s.col[j] >= 0 ? v(s.col[j]) : s.xb(j); };
+  for (Index j = 0; j < n; ++j) {
+    const long double xj = x(j);
+    for (SparseMatrix::InnerIterator e(f.P, j); e; ++e) {
+      const Index i = e.row();
+      if (i > j) continue;
+      dual[i] += static_cast<long double>(e.value()) * xj;
+      if (i != j) dual[j] += static_cast<long double>(e.value()) * x(i);
+    }
+    for (SparseMatrix::InnerIterator e(f.E, j); e; ++e) {
+      dual[j] += static_cast<long double>(e.value()) * v(nF + e.row());
+      prim_e[e.row()] += static_cast<long double>(e.value()) * xj;
+    }
+    for (SparseMatrix::InnerIterator e(f.G, j); e; ++e) {
+      const Index k = e.row();
+      if (s.pos[k] < 0) continue;
+      dual[j] += static_cast<long double>(e.value()) * v(nF + me + s.pos[k]);
+      prim_g[k] += static_cast<long double>(e.value()) * xj;
+    }
+  }
+  res.resize(s.N);
+  for (Index j = 0; j < n; ++j)
+    if (s.col[j] >= 0) res(s.col[j]) = static_cast<double>(-(dual[j] + f.q(j)));
+  for (Index k = 0; k < me; ++k) res(nF + k) = static_cast<double>(f.be(k) - prim_e[k]);
+  for (Index k = 0; k < f.mg; ++k)
+    if (s.pos[k] >= 0) res(nF + me + s.pos[k]) = static_cast<double>((a.rows[k] < 0 ? f.gl(k) : f.gu(k)) - prim_g[k]);
+}
+
+// Solves the reduced KKT system of qp_polish.hpp (step 2) from the interior iterate (it.x,
+// it.y, signed row multipliers zg_it). False when the factorization fails.
+bool solve_reduced(const StandardForm& f, const Iterate& it, const Vector& zg_it, const ActiveSet& a,
+                   ScaledPoint& out) {
+  const Index n = f.n, me = f.me, mg = f.mg;
+  const Reduced s = reduce(f, a);
+  const Index nF = s.nF, N = s.N;
+  // Upper triangle of K_δ: P̃_FF + δI (col keeps the order, so i ≤ j stays above the
+  // diagonal), the constraint columns C_Fᵀ to the right of it, and −δI below.
+  std::vector<Triplet> t;
+  t.reserve(static_cast<size_t>(f.P.nonZeros() + f.E.nonZeros() + f.G.nonZeros() + N));
+  for (Index j = 0; j < n; ++j) {
+    const Index cj = s.col[j];
+    if (cj < 0) continue;
+    for (SparseMatrix::InnerIterator e(f.P, j); e; ++e)
+      if (e.row() <= j && s.col[e.row()] >= 0) t.emplace_back(s.col[e.row()], cj, e.value());
+    for (SparseMatrix::InnerIterator e(f.E, j); e; ++e) t.emplace_back(cj, nF + e.row(), e.value());
+    for (SparseMatrix::InnerIterator e(f.G, j); e; ++e)
+      if (s.pos[e.row()] >= 0) t.emplace_back(cj, nF + me + s.pos[e.row()], e.value());
+  }
+  for (Index i = 0; i < N; ++i) t.emplace_back(i, i, i < nF ? kPolishDelta : -kPolishDelta);
+  SparseMatrix K(N, N);
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  sparse::CholmodLdlt ldlt;
+  if (!ldlt.analyze(K).ok() || !ldlt.factorize(K).ok()) return false;
+
+  // Refinement from the interior iterate; keeps the iterate of smallest residual.
+  Vector v(N);
+  for (Index j = 0; j < n; ++j)
+    if (s.col[j] >= 0) v(s.col[j]) = it.x(j);
+  for (Index k = 0; k < me; ++k) v(nF + k) = it.y(k);
+  for (Index k = 0; k < mg; ++k)
+    if (s.pos[k] >= 0) v(nF + me + s.pos[k]) = zg_it(k);
+  std::vector<long double> acc;
+  Vector res, d;
+  reduced_residual(f, a, s, v, res, acc);
+  double best = inf_norm(res);
+  Vector best_v = v;
+  int stalls = 0;
+  for (int step = 0; step < kPolishRefinement && best > 0 && stalls < 3; ++step) {
+    d = res;
+    if (!ldlt.solve(d).ok() || !d.allFinite()) break;
+    v += d;
+    reduced_residual(f, a, s, v, res, acc);
+    const double now = inf_norm(res);
+    if (now < best) {
+      stalls = now < 0.5 * best ? 0 : stalls + 1;
+      best = now;
+      best_v = v;
+    } else {
+      ++stalls;
+    }
+  }
+  out.x = s.xb;
+  for (Index j = 0; j < n; ++j)
+    if (s.col[j] >= 0) out.x(j) = best_v(s.col[j]);
+  out.y = best_v.segment(nF, me);
+  out.zg.setZero(mg);
+  for (Index k = 0; k < mg; ++k)
+    if (s.pos[k] >= 0) out.zg(k) = best_v(nF + me + s.pos[k]);
+  return true;
+}
+
+// Step 3 and 4 of qp_polish.hpp: the unscaled candidate of `sp`, with wrong signs up to
+// thr_d set to 0; `next` receives the corrected active set. Returns the largest wrong-sign
+// magnitude of a multiplier.
+double build_candidate(const StandardForm& f, const QpProblem& p, const ActiveSet& a, const ScaledPoint& sp,
+                       double thr_p, double thr_d, QpResult& cand, ActiveSet& next, Workspace& w) {
+  const Index n = f.n;
+  cand.x = f.Dx.cwiseProduct(sp.x);
+  for (Index j = 0; j < n; ++j) {
+    if (a.bounds[j] != 0) cand.x(j) = a.bounds[j] < 0 ? p.xl(j) : p.xu(j);
+    if (f.fixed_eq_row[j] >= 0) cand.x(j) = p.xl(j);
+  }
+  cand.y.setZero(p.num_equalities());
+  cand.z.setZero(p.num_inequalities());
+  cand.z_bounds.setZero(n);
+  for (Index k = 0; k < f.me; ++k) {
+    const double v = f.Ee(k) * sp.y(k) / f.c;
+    if (f.eq_source[k] == EqSource::a_row) cand.y(f.eq_index[k]) = v;
+    if (f.eq_source[k] == EqSource::g_row) cand.z(f.eq_index[k]) = v;
+  }
+  double wrong = 0.0;
+  // Rows: multiplier signs at active sides, violations at inactive ones.
+  w.Gx.noalias() = p.G * cand.x;
+  for (Index k = 0; k < f.mg; ++k) {
+    const Index i = f.g_index[k];
+    if (a.rows[k] != 0) {
+      const double zi = f.Eg(k) * sp.zg(k) / f.c;
+      const double bad = a.rows[k] < 0 ? zi : -zi;  // > 0: wrong sign
+      cand.z(i) = bad > 0 ? 0.0 : zi;
+      wrong = std::max(wrong, bad);
+      if (bad > thr_d) next.rows[k] = 0;
+    } else if (w.Gx(i) < p.l(i) - thr_p) {
+      next.rows[k] = -1;
+    } else if (w.Gx(i) > p.u(i) + thr_p) {
+      next.rows[k] = 1;
+    }
+  }
+  // Bound multipliers of fixed and bound-active variables from stationarity.
+  w.Px.noalias() = p.P.selfadjointView<Eigen::Upper>() * cand.x;
+  w.Aty.noalias() = p.A.transpose() * cand.y;
+  w.Gtz.noalias() = p.G.transpose() * cand.z;
+  for (Index j = 0; j < n; ++j) {
+    const double target = -(w.Px(j) + p.q(j) + w.Aty(j) + w.Gtz(j));
+    if (f.fixed_eq_row[j] >= 0) {
+      cand.z_bounds(j) = target;
+    } else if (a.bounds[j] != 0) {
+      const double bad = a.bounds[j] < 0 ? target : -target;
+      cand.z_bounds(j) = bad > 0 ? 0.0 : target;
+      wrong = std::max(wrong, bad);
+      if (bad > thr_d) next.bounds[j] = 0;
+    } else if (cand.x(j) < p.xl(j) - thr_p) {
+      next.bounds[j] = -1;
+    } else if (cand.x(j) > p.xu(j) + thr_p) {
+      next.bounds[j] = 1;
+    }
+  }
+  return wrong;
+}
+
+}  // namespace
+
+PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, const QpSettings& s,
+                              const Residuals& before, QpResult& candidate, Workspace& w) {
+  PolishOutcome out;
+  const double thr_p = kPolishSignFraction * (s.eps_abs + s.eps_rel * before.scale_p);
+  const double thr_d = kPolishSignFraction * (s.eps_abs + s.eps_rel * before.scale_d);
+  ActiveSet a = guess_active_set(f, it);
+  Vector zg_it, zb_it;
+  it.signed_multipliers(f.mg, f.n, zg_it, zb_it);
+  QpResult cand;
+  ScaledPoint sp;
+  double best_merit = std::numeric_limits<double>::infinity();
+  for (int round = 0; round < kPolishRounds; ++round) {
+    if (!solve_reduced(f, it, zg_it, a, sp)) break;
+    ++out.rounds;
+    ActiveSet next = a;
+    const double wrong = build_candidate(f, p, a, sp, thr_p, thr_d, cand, next, w);
+    if (wrong <= thr_d) {
+      const Residuals r = compute_residuals(p, cand, w);
+      const double m = merit_of(r, s);
+      if (m < best_merit) {
+        best_merit = m;
+        out.found = true;
+        out.residuals = r;
+        candidate.x = cand.x;
+        candidate.y = cand.y;
+        candidate.z = cand.z;
+        candidate.z_bounds = cand.z_bounds;
+      }
+      if (within(r, s, 1.0)) break;
+    }
+    if (next == a) break;
+    a = std::move(next);
+  }
+  return out;
+}
+
+}  // namespace detail
+
+void QpSolver::Impl::polish(QpInfo& info) {
+  const QpStatus before_status = info.status;
+  if (!settings.polish) return;
+  if (before_status != QpStatus::solved_inaccurate && before_status != QpStatus::numerical_error &&
+      before_status != QpStatus::max_iterations)
+    return;
+  if (result.x.size() != problem.num_variables() || it.x.size() != form.n) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const detail::Residuals before = detail::compute_residuals(problem, result, work);
+  QpResult candidate;
+  const detail::PolishOutcome o = detail::polish_solution(form, problem, it, settings, before, candidate, work);
+  info.polish_attempted = true;
+  info.polish_rounds += o.rounds;
+  // Accepted only if no residual gets worse (beyond 1e-2 of its tolerance), the worst
+  // ratio to the tolerance improves, and the point is solved, or the interior point's was
+  // already solved_inaccurate (a limit or a failure becomes solved, never inaccurate).
+  const detail::Residuals& r = o.residuals;
+  const QpSettings& s = settings;
+  const bool solved = o.found && detail::within(r, s, 1.0);
+  const bool accept =
+      o.found && detail::merit_of(r, s) < detail::merit_of(before, s) &&
+      r.primal <= std::max(before.primal, detail::kPolishSignFraction * (s.eps_abs + s.eps_rel * r.scale_p)) &&
+      r.dual <= std::max(before.dual, detail::kPolishSignFraction * (s.eps_abs + s.eps_rel * r.scale_d)) &&
+      r.gap <= std::max(before.gap, detail::kPolishSignFraction * (s.eps_abs + s.eps_rel * r.scale_g)) &&
+      (solved || before_status == QpStatus::solved_inaccurate);
+  if (accept) {
+    result.x = candidate.x;
+    result.y = candidate.y;
+    result.z = candidate.z;
+    result.z_bounds = candidate.z_bounds;
+    info.polish_accepted = true;
+    const bool factorized = adopt_polished_point(info);
+    info.primal_residual = r.primal;
+    info.dual_residual = r.dual;
+    info.duality_gap = r.gap;
+    info.status = solved ? QpStatus::solved : QpStatus::solved_inaccurate;
+    info.message = std::string(to_string(info.status)) + " by polishing on the active set (interior point: " +
+                   to_string(before_status) + (info.message.empty() ? "" : ", " + info.message) + ")";
+    if (!factorized) info.message += "; the KKT factorization at the polished point failed (backward() inexact)";
+  }
+  info.polish_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool QpSolver::Impl::adopt_polished_point(QpInfo& info) {
+  const detail::StandardForm& f = form;
+  load_unscaled_point(result.x, result.y, result.z, result.z_bounds);
+  const Vector &zg = work.zg, &zb = work.zb;
+  const double mu = detail::kPolishMu, root = std::sqrt(mu);
+  for (detail::Side* side : it.sides()) {
+    const bool rows = (side == &it.g_lower || side == &it.g_upper);
+    for (Index k = 0; k < side->size(); ++k) {
+      const Index q = side->idx[k];
+      const double v = rows ? it.vg(q) : it.x(q), zeta = rows ? zg(q) : zb(q);
+      double slack = std::max(side->upper ? side->bound(k) - v : v - side->bound(k), 0.0);
+      double z = std::max(side->upper ? zeta : -zeta, 0.0);
+      if (z >= slack) {  // active side (a weakly active one has z = s = √μ)
+        z = std::max(z, root);
+        slack = mu / z;
+      } else {
+        slack = std::max(slack, root);
+        z = mu / slack;
+      }
+      side->s(k) = slack;
+      side->z(k) = z;
+    }
+  }
+  it.compute_side_residuals(f);
+  it.barrier_terms(f.mg, f.n, Dg, Db);
+  return factorize(info);
+}
+
+}  // namespace lcprelax

@@ -1,0 +1,72 @@
+#pragma once
+// Solution polishing of the interior point's answer (internal; QpSettings::polish).
+//
+// Stellato, Banjac, Goulart, Bemporad, Boyd, "OSQP: an operator splitting solver for
+// quadratic programs", Math. Prog. Comp. 12, 2020, §5.2; the active-set refinement
+// ("crossover") of interior-point codes.
+//
+// 1. Active set, guessed on the scaled final iterate (standard_form.hpp): a one-sided
+//    constraint (a side of a row of G̃ or of a variable bound) is active when its slack is
+//    smaller than its multiplier, s < z; where both sides of one row or variable qualify
+//    the side with the larger z is taken. Equality rows (Ẽ) are always active.
+// 2. Reduced KKT system. Variables at an active bound are fixed there (x̃_B = bound) and
+//    eliminated; with C = [Ẽ; G̃_A] restricted to the free columns F and h its active
+//    sides (b̃, g̃l or g̃u), the equality-constrained QP
+//        [P̃_FF   C_Fᵀ] [x̃_F]   [−q̃_F − P̃_FB x̃_B]
+//        [C_F    0   ] [λ  ] = [ h − C_B x̃_B     ]   =: K0 v = r
+//    is solved by CHOLMOD LDLᵀ of the quasi-definite K_δ = K0 + diag(δI, −δI) (δ =
+//    kPolishDelta, scaled problem) and iterative refinement v ← v + K_δ⁻¹(r − K0 v)
+//    started from the interior iterate. Refinement is the proximal point iteration on K0:
+//    it converges to a solution of K0 v = r whenever that system is consistent, also when
+//    C_F is rank deficient (degenerate vertices with more active rows than free
+//    variables) or P̃_FF is singular on the null space of C_F (the solution nearest the
+//    interior iterate). The residual r − K0 v is accumulated in long double (mixed-
+//    precision refinement: it then reaches the roundoff of v, not that of the residual's
+//    terms), and the iterate of smallest ‖r − K0 v‖∞ is kept (on an inconsistent system,
+//    i.e. a wrong active set, the residual stops decreasing and v drifts along K0's null
+//    space).
+// 3. Unscaled candidate: x = Dx∘x̃ with x_j set exactly to its bound at active bounds, row
+//    multipliers λ mapped back as y = Ee∘ỹ/c, z = Eg∘ζ/c (0 at inactive rows); bound
+//    multipliers of fixed and bound-active variables from stationarity componentwise,
+//    z_b,j = −(Px + q + Aᵀy + Gᵀz)_j (0 at free variables). Signs (qp_problem.hpp): z ≤ 0
+//    at an active lower side, z ≥ 0 at an active upper side.
+// 4. Corrections (at most kPolishRounds reduced solves): a side whose multiplier has the
+//    wrong sign by more than 1e-2·tol_d leaves the active set, an inactive row or bound
+//    violated by more than 1e-2·tol_p enters it at the violated side, and the system is
+//    solved again; tol_p, tol_d are the termination tolerances eps_abs + eps_rel·scale of
+//    the unpolished point. Wrong signs within 1e-2·tol_d are set to 0.
+// The best candidate (smallest worst ratio of residual to tolerance, residuals recomputed
+// by compute_residuals exactly as the termination test does) among the rounds without a
+// wrong sign is returned; the caller (QpSolver::Impl::polish) decides whether to accept it,
+// and on acceptance replaces the interior iterate by the polished point (kPolishMu) and
+// factorizes the KKT matrix there for backward().
+#include "qp_solver_impl.hpp"
+
+namespace lcprelax::detail {
+
+constexpr double kPolishDelta = 1e-7;      ///< regularization δ of K_δ (scaled problem)
+constexpr int kPolishRounds = 4;           ///< reduced solves (guess + corrections)
+constexpr int kPolishRefinement = 25;      ///< refinement steps per reduced solve
+constexpr double kPolishSignFraction = 1e-2;  ///< wrong-sign / violation threshold (× tolerance)
+/// Complementarity s·z of the iterate that replaces the interior one after an accepted
+/// polish (scaled problem): active sides get s = μ/z with z = max(|ζ|, √μ), inactive ones
+/// z = μ/s with s = max(slack, √μ); the KKT matrix is factorized there once, so that
+/// backward() differentiates the polished point's active set with the forward machinery:
+/// W = s/z = μ/z² on active sides (1e-14 at z = 1) and s²/μ on inactive ones (1e14 at
+/// s = 1); a weakly active side (z = s = √μ) gets W = 1, between the two.
+constexpr double kPolishMu = 1e-14;
+
+struct PolishOutcome {
+  int rounds = 0;          ///< reduced systems factorized
+  bool found = false;      ///< a candidate without wrong-sign multipliers exists
+  Residuals residuals;     ///< its unscaled residuals (compute_residuals)
+};
+
+/// Polishes on the active set guessed from `it` (the final iterate of a run on f, p).
+/// `before` are the residuals of the unpolished result (they set tol_p and tol_d). On
+/// found, `candidate` holds the best polished point (x, y, z, z_bounds; info untouched).
+/// Allocates (a new reduced pattern per round); uses w's unscaled products as scratch.
+PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, const QpSettings& s,
+                              const Residuals& before, QpResult& candidate, Workspace& w);
+
+}  // namespace lcprelax::detail
