@@ -17,7 +17,6 @@
 #include <cstdio>
 
 namespace lcprelax::learn {
-#include <cstdlib>
 namespace {
 
 struct Outcome {
@@ -37,7 +36,6 @@ Outcome run(PolygonMethod method, int epochs, double lr) {
   ParameterSet theta = make_polygon_parameters(perturb_polygon_model(truth, flags, 0.25, 3), flags);
   PolygonLossSettings ls;
   ls.method = method;
-  if (std::getenv("DBG_NOPOLISH")) ls.qp.polish = false;
   PolygonObjective objective(data, ls);
   std::vector<Index> training, validation;
   split_samples(objective.num_samples(), 0.0, 1, training, validation);
