@@ -56,6 +56,7 @@ struct LearnSceneOptions {
   int proximal_iterations = 1;
   double phase1_regularization = learn::ConvexStepLossSettings{}.phase1_regularization;
   double deviation = learn::ConvexStepLossSettings{}.deviation;
+  bool phase1_deviation = learn::ConvexStepLossSettings{}.phase1_deviation;
   double beta2 = learn::OptimizerSettings{}.beta2;
   std::string log, plot;
   bool json = false;
@@ -101,6 +102,7 @@ int run_learn_scene(const LearnSceneOptions& o) {
   ls.relaxed.proximal_iterations = o.proximal_iterations;
   ls.convex.phase1_regularization = o.phase1_regularization;  // validated with the settings
   ls.convex.deviation = o.deviation;
+  ls.convex.phase1_deviation = o.phase1_deviation;
   learn::SceneParameterSettings ps;
   ps.learn = learn::parse_scene_learn_flags(o.learn);
   require_option(o.scene.empty() || o.bodies == LearnSceneOptions{}.bodies, "--bodies", "cannot be combined with --scene");
@@ -213,6 +215,9 @@ Command add_learn_scene_command(CLI::App& learn) {
                   "convex: r of phase 1's (r/2) sum Wnn_ii lambda_i^2 (0: the simulator's model exactly)")
       ->capture_default_str();
   app->add_option("--deviation", o->deviation, "convex: weight w of the L2 deviation penalty in both phases")
+      ->capture_default_str();
+  app->add_option("--phase1-deviation", o->phase1_deviation,
+                  "convex: put the deviation penalty in phase 1 too (biased on the model's own data)")
       ->capture_default_str();
   app->add_option("--beta2", o->beta2, "adam: decay of the squared-gradient average, in [0, 1)")->capture_default_str();
   app->add_option("--proximal-iterations", o->proximal_iterations,

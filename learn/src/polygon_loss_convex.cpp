@@ -17,6 +17,7 @@ SampleResult polygon_convex_loss(const PolygonAssembly& a, const Vec3& target, d
   cs.qp = settings.qp;
   cs.rho = settings.convex_rho;
   cs.deviation = settings.convex_deviation;
+  cs.phase1_deviation = true;  // the polygon's (and the seeds') formulation
   cs.formulation = ConvexFormulation::dual;  // W of 2 to 8 rows: the dense dual QPs
   cs.phase1_regularization = 0.0;            // the library's convex model exactly
   ConvexStepLossTimes t;

@@ -8,6 +8,8 @@
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/learn/step_loss_convex.hpp>
 
+#include <memory>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -91,6 +93,7 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
 
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const double w = settings.deviation, rho = settings.rho;
+  const double w1 = settings.phase1_deviation ? w : 0.0;  // phase 1's deviation weight
   StepLossResult r;
   zero_cotangent(s, r.grad);
   const bool lifted = settings.formulation == ConvexFormulation::lifted ||
@@ -98,7 +101,7 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   // No contact approaching in either of phase 1's terms: λ = 0 (locally constant).
   const Vector gap = s.phi.cwiseMax(0.0) / dt;
   const Vector bn = s.Jn * s.v_star + gap;
-  const Vector q1 = s.Jn * ((1.0 + w) * s.v_star - w * target) + gap;
+  const Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap;
   if (nc == 0 || (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0)) {
     r.status = ContactStatus::solved;
     r.v_next = s.v_star;
@@ -108,7 +111,11 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
     return r;
   }
   const detail::ConvexLossData data(s, target, dt, w, lifted);
-  const detail::ConvexLossQp p1 = detail::convex_loss_phase1(data, settings.phase1_regularization);
+  // Phase 1 on its own data when its deviation weight differs (phase1_deviation = false).
+  std::unique_ptr<detail::ConvexLossData> data1_own;
+  if (w1 != w) data1_own = std::make_unique<detail::ConvexLossData>(s, target, dt, w1, lifted);
+  const detail::ConvexLossData& data1 = data1_own ? *data1_own : data;
+  const detail::ConvexLossQp p1 = detail::convex_loss_phase1(data1, settings.phase1_regularization);
   detail::ConvexLossQp p2 = detail::convex_loss_phase2(data, rho);
   t.assembly = detail::since(t0);
 
@@ -176,7 +183,13 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   double adjoint = g2.adjoint_residual;
   if ((dl_dx1.array() != 0.0).any()) {  // else κ's bound is inactive and phase 1 contributes nothing
     const QpGradient g1 = s1.backward(dl_dx1);
-    pb.add_phase(1, p1, g1, settings.phase1_regularization);
+    if (data1_own) {
+      detail::ConvexLossPullback pb1(data1);
+      pb1.add_phase(1, p1, g1, settings.phase1_regularization);
+      pb1.finish(r.grad);
+    } else {
+      pb.add_phase(1, p1, g1, settings.phase1_regularization);
+    }
     adjoint = std::max(adjoint, g1.adjoint_residual);
   }
   pb.finish(r.grad);

@@ -6,10 +6,12 @@
 // next velocity v̄ (3 per island body: m/s, m/s, rad/s), Δt (s). Impulses λ = (λn, λt) in N·s.
 //
 // Model: the two-phase convex model of models/contact_step.hpp (solve_convex_model) with an
-// L2 deviation penalty of weight w ≥ 0 in both phase objectives, as the polygon convex loss
-// (polygon_losses.hpp): (w/2)‖v⁺(λ) − v̄‖²_M with v⁺ = v* + DJᵀλ adds (w/2)λᵀWλ + wλᵀJ(v* − v̄)
-// (+ const), W = J D Jᵀ. With c = (1 + w)v* − w v̄ and bn = Jn v* + max(φ, 0)/Δt:
-//   1. min_{λn ≥ 0} ½(1+w)λnᵀWnn λn + λnᵀ(Jn c + max(φ,0)/Δt)   s.t. Wnn λn + bn ≥ 0
+// L2 deviation penalty of weight w ≥ 0 in phase 2's objective (and in phase 1's too with
+// phase1_deviation, as the polygon convex loss, polygon_losses.hpp): (w/2)‖v⁺(λ) − v̄‖²_M
+// with v⁺ = v* + DJᵀλ adds (w/2)λᵀWλ + wλᵀJ(v* − v̄) (+ const), W = J D Jᵀ. With
+// c = (1 + w)v* − w v̄ and bn = Jn v* + max(φ, 0)/Δt (phase 1: w₁ = w with
+// phase1_deviation, else 0, in place of w):
+//   1. min_{λn ≥ 0} ½(1+w₁)λnᵀWnn λn + λnᵀ(Jn c₁ + max(φ,0)/Δt)   s.t. Wnn λn + bn ≥ 0
 //   2. κ = eᵀmax(λn¹, 0);
 //      min ½(1+w)λᵀWλ + ρ Σ_i exp(φ_i) Wnn_ii λn_i² + λᵀJc
 //      s.t. Wn λ + bn ≥ 0,  λn ≥ 0,  eᵀλn ≤ κ(1 + s) + 1e-12 N·s,  |λt_f| ≤ μ_f λn_(row f)
@@ -57,6 +59,17 @@ struct ConvexStepLossSettings {
   QpSettings qp;                 ///< both phases (QpSettings' defaults)
   double rho = 1e-3;             ///< ρ of the softening term (contact_step.hpp), ≥ 0
   double deviation = 1.0;        ///< w of the deviation penalty, ≥ 0
+  /// Whether phase 1 carries the deviation penalty too (the default, the seeds' and the
+  /// polygon's formulation). With it,
+  /// κ = eᵀλn¹ moves towards the observed v̄ although phase 1 has no friction, so on data of
+  /// the convex model itself ℓ ≠ 0 at the true parameters (measured on a 30-body pile: mean
+  /// 0.049 (m/s)² with w = 1, r = 0; 1.3e-12 with w = 0). With false, phase 1 is the
+  /// simulator's (w = 0) and only phase 2 is pulled towards v̄: at the truth its optimum is v̄
+  /// itself, so the penalty vanishes there (with phase1_regularization = 0; measured 5.7e-13,
+  /// 7e-8 with r = 1e-6, 0.056 with r = 1e-3). Not the default: on the settled-pile
+  /// gradient checks its adjoint agrees with central differences to 4.5e-5 only (phase 1
+  /// without the penalty's curvature is nearly singular), against 1e-6 with it.
+  bool phase1_deviation = true;
   ConvexFormulation formulation = ConvexFormulation::automatic;
   /// r ≥ 0: phase 1 gets (r/2) Σ Wnn_ii λn_i² (the phase-2 softening's form without exp(φ)).
   /// Where an island has more active contacts than degrees of freedom (any settled 2-D pile),
