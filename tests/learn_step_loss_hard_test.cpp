@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "contact_island_fixtures.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -18,55 +20,20 @@
 namespace lcprelax::learn {
 namespace {
 
+using testing::box_stack;
+using testing::for_each_entry;
+using testing::largest_island;
+
 constexpr double kDt = 1e-2;
 
-// The island of `world` with the most contacts (simulator's margin).
-ContactSystem largest_island(const World& world, const SimulatorSettings& settings) {
-  const StepContacts sc = find_step_contacts(world, settings);
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < sc.islands.size(); ++i)
-    if (sc.islands[i].contacts.size() > sc.islands[best].contacts.size()) best = i;
-  EXPECT_FALSE(sc.islands.empty());
-  return assemble_contact_system(world, sc.contacts, sc.islands[best], settings.dt);
-}
 
-ContactSystem box_stack(int boxes, double mu) {
-  const Scene scene = make_box_stack_scene(boxes, 0.2, mu);
-  return largest_island(scene.world, scene.settings);
-}
 
 // A settled pile of 20 bodies (cached: built once per test binary).
 const ContactSystem& pile_island() {
-  static const ContactSystem s = [] {
-    PileOptions o;
-    o.bodies = 20;
-    o.seed = 3;
-    const Scene scene = make_pile_scene(o);
-    Simulator sim = make_simulator(scene);
-    for (int k = 0; k < 400; ++k) sim.step();
-    return largest_island(sim.world(), sim.settings());
-  }();
+  static const ContactSystem s = testing::settled_pile_island(20, 3, 400);
   return s;
 }
 
-// Visits every data entry: fn(value reference, cotangent value).
-void for_each_entry(ContactSystem& s, const ContactSystemCotangent& g,
-                    const std::function<void(double&, double, const std::string&)>& fn) {
-  for (Index k = 0; k < s.Jn.nonZeros(); ++k) {
-    const Index col = std::upper_bound(s.Jn.outerIndexPtr(), s.Jn.outerIndexPtr() + s.Jn.cols() + 1, k) -
-                      s.Jn.outerIndexPtr() - 1;
-    fn(s.Jn.valuePtr()[k], g.Jn.coeff(s.Jn.innerIndexPtr()[k], col), "Jn");
-  }
-  for (Index k = 0; k < s.Jt.nonZeros(); ++k) {
-    const Index col = std::upper_bound(s.Jt.outerIndexPtr(), s.Jt.outerIndexPtr() + s.Jt.cols() + 1, k) -
-                      s.Jt.outerIndexPtr() - 1;
-    fn(s.Jt.valuePtr()[k], g.Jt.coeff(s.Jt.innerIndexPtr()[k], col), "Jt");
-  }
-  for (Index c = 0; c < s.phi.size(); ++c) fn(s.phi(c), g.phi(c), "phi");
-  for (Index f = 0; f < s.mu.size(); ++f) fn(s.mu(f), g.mu(f), "mu");
-  for (Index k = 0; k < s.minv.size(); ++k) fn(s.minv(k), g.minv(k), "minv");
-  for (Index k = 0; k < s.v_star.size(); ++k) fn(s.v_star(k), g.v_star(k), "v_star");
-}
 
 double loss(const ContactSystem& s, const Vector& target) {
   const StepLossResult r = hard_step_loss(s, target, kDt);

@@ -53,20 +53,11 @@ void check_input(const ContactSystem& s, const Vector& target, double dt) {
   if (!all_finite(target)) fail("target: must be finite");
 }
 
-void zero_cotangent(const ContactSystem& s, ContactSystemCotangent& g) {
-  g.Jn = detail::zero_like(s.Jn);
-  g.Jt = detail::zero_like(s.Jt);
-  g.phi = Vector::Zero(s.num_contacts());
-  g.mu = Vector::Zero(s.num_friction());
-  g.minv = Vector::Zero(s.num_dofs());
-  g.v_star = Vector::Zero(s.num_dofs());
-}
-
 void fail_result(StepLossResult& r, const ContactSystem& s, const std::string& message) {
   r.status = ContactStatus::failed;
   r.message = message;
   r.loss = std::numeric_limits<double>::quiet_NaN();
-  zero_cotangent(s, r.grad);
+  r.grad.set_zero(s);
 }
 
 }  // namespace
@@ -95,7 +86,7 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   const double w = settings.deviation, rho = settings.rho;
   const double w1 = settings.phase1_deviation ? w : 0.0;  // phase 1's deviation weight
   StepLossResult r;
-  zero_cotangent(s, r.grad);
+  r.grad.set_zero(s);
   const bool lifted = settings.formulation == ConvexFormulation::lifted ||
                       (settings.formulation == ConvexFormulation::automatic && nc >= kLiftedMinContacts);
   // No contact approaching in either of phase 1's terms: λ = 0 (locally constant).

@@ -2,6 +2,9 @@
 // the island data (step_loss_convex_qp.hpp; formulas in step_loss_convex.hpp).
 #include "step_loss_convex_qp.hpp"
 
+#include <lcprelax/models/convex_qp_rows.hpp>
+#include <lcprelax/sparse/triplets.hpp>
+
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -11,45 +14,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-SparseMatrix from_triplets(Index rows, Index cols, const std::vector<Triplet>& t) {
-  SparseMatrix A(rows, cols);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
-
-// Appends the entries of A (or Aᵀ when `transpose`) at (row_offset, col_offset), times scale.
-void append(std::vector<Triplet>& t, const SparseMatrix& A, Index row_offset, Index col_offset, double scale,
-            bool transpose = false) {
-  for (Index j = 0; j < A.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
-      const Index r = transpose ? j : it.row(), c = transpose ? it.row() : j;
-      t.emplace_back(row_offset + r, col_offset + c, scale * it.value());
-    }
-}
-
-SparseMatrix upper(const SparseMatrix& A) {
-  SparseMatrix U = A.triangularView<Eigen::Upper>();
-  U.makeCompressed();
-  return U;
-}
-
-// Lifted equality M Δv − Jnᵀλn (− Jtᵀλt when `friction`) = 0, Δv first in x.
-void lifted_equality(const ContactSystem& s, bool friction, QpProblem& p) {
-  const Index nv = s.num_dofs(), nc = s.num_contacts();
-  std::vector<Triplet> t;
-  for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
-  append(t, s.Jn, 0, nv, -1.0, /*transpose=*/true);
-  if (friction) append(t, s.Jt, 0, nv + nc, -1.0, /*transpose=*/true);
-  p.A = from_triplets(nv, p.num_variables(), t);
-  p.b = Vector::Zero(nv);
-}
-
 // Non-penetration rows 0..nc: Wn λ (dual: W's entries in rows < nc and columns < `cols`)
 // or Jn Δv (lifted).
 void contact_rows(const ConvexLossData& d, Index cols, std::vector<Triplet>& g) {
   if (d.lifted) {
-    append(g, d.s.Jn, 0, 0, 1.0);
+    append_triplets(g, d.s.Jn, 0, 0, 1.0);
     return;
   }
   for (Index c = 0; c < cols; ++c)
@@ -78,8 +47,8 @@ ConvexLossData::ConvexLossData(const ContactSystem& system, const Vector& target
     for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) w_nn(it.row()) += it.value() * it.value() * s.minv(j);
   if (!lifted) {
     std::vector<Triplet> t;
-    append(t, s.Jn, 0, 0, 1.0);
-    append(t, s.Jt, nc, 0, 1.0);
+    append_triplets(t, s.Jn, 0, 0, 1.0);
+    append_triplets(t, s.Jt, nc, 0, 1.0);
     J = from_triplets(nc + nf, nv, t);
     W = delassus(s);
     W.makeCompressed();
@@ -96,14 +65,14 @@ ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r) {
     const SparseMatrix Wnn = d.W.topLeftCorner(nc, nc);
     SparseMatrix P = (1.0 + d.w) * Wnn;
     for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += r * d.w_nn(i);
-    out.problem.P = upper(P);
+    out.problem.P = upper_triangle(P);
   } else {  // x = (Δv, λn): ½(1+w)ΔvᵀMΔv, M Δv = Jnᵀλn
     out.problem = QpProblem(nv + nc);
     std::vector<Triplet> t;
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
     for (Index i = 0; i < nc; ++i) t.emplace_back(nv + i, nv + i, r * d.w_nn(i));
     out.problem.P = from_triplets(nv + nc, nv + nc, t);
-    lifted_equality(s, /*friction=*/false, out.problem);
+    lifted_momentum_equality(s, /*friction=*/false, out.problem);
     out.lambda_offset = nv;
   }
   QpProblem& p = out.problem;
@@ -133,21 +102,15 @@ ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho) {
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
     for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i));
     p.P = from_triplets(n, n, t);
-    lifted_equality(s, /*friction=*/true, p);
+    lifted_momentum_equality(s, /*friction=*/true, p);
   } else {
     SparseMatrix P = (1.0 + d.w) * d.W;
     for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i);
-    p.P = upper(P);
+    p.P = upper_triangle(P);
   }
   std::vector<Triplet> g;
   contact_rows(d, n, g);
-  for (Index i = 0; i < nc; ++i) g.emplace_back(nc, ln + i, 1.0);
-  for (Index f = 0; f < nf; ++f) {  // λt − μλn ≤ 0, λt + μλn ≥ 0
-    g.emplace_back(nc + 1 + 2 * f, lt + f, 1.0);
-    g.emplace_back(nc + 1 + 2 * f, ln + s.friction_rows[f], -s.mu(f));
-    g.emplace_back(nc + 2 + 2 * f, lt + f, 1.0);
-    g.emplace_back(nc + 2 + 2 * f, ln + s.friction_rows[f], s.mu(f));
-  }
+  append_friction_cone_rows(s, ln, lt, g);  // eᵀλn ≤ κ, λt ∓ μλn
   p.G = from_triplets(m, n, g);
   p.l = Vector::Constant(m, -kInf);
   p.u = Vector::Constant(m, kInf);

@@ -85,14 +85,7 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
   const Index n = nc + 3 * nf, bp = nc, bm = nc + nf, gm = nc + 2 * nf;
   StepLossResult r;
-  r.grad.Jn = s.Jn;
-  r.grad.Jt = s.Jt;
-  for (Index k = 0; k < r.grad.Jn.nonZeros(); ++k) r.grad.Jn.valuePtr()[k] = 0.0;
-  for (Index k = 0; k < r.grad.Jt.nonZeros(); ++k) r.grad.Jt.valuePtr()[k] = 0.0;
-  r.grad.phi = Vector::Zero(nc);
-  r.grad.mu = Vector::Zero(nf);
-  r.grad.minv = Vector::Zero(nd);
-  r.grad.v_star = Vector::Zero(nd);
+  r.grad.set_zero(s);
   if (final_basis) final_basis->clear();
   if (n == 0) {  // no contact: v⁺ = v*
     r.status = ContactStatus::solved;

@@ -40,6 +40,28 @@ Vector contact_scales(const ContactSystem& s, const std::vector<std::vector<int>
   return S;
 }
 
+void check_center(const ContactSystem& s, const Vector& center) {
+  const Index n = s.num_contacts() + s.num_friction();
+  if (center.size() != n || !center.allFinite())
+    throw InputError("relaxed step loss: proximal center: expected " + std::to_string(n) +
+                     " finite entries [λ̃n; γ], got " + std::to_string(center.size()));
+}
+
+// The centred shift's linear and constant parts, (b/2)(t(λ̃n − c_λ)² + (γ − c_γ)²/t) minus
+// its quadratic part (which is in P), added to q and r of the relaxed QP.
+void add_center_terms(const ContactSystem& s, const Vector& S, const RelaxedStepLossSettings& st, const Vector& center,
+                      QpProblem& qp) {
+  const Index nc = s.num_contacts(), nf = s.num_friction(), ln = s.num_dofs(), gm = ln + nc + 2 * nf;
+  const double t = st.shift_balance;
+  for (Index f = 0; f < nf; ++f) {
+    const int c = s.friction_rows[static_cast<std::size_t>(f)];
+    const double b = st.a2 * s.mu(f) * S(c), cl = center(c), cg = center(nc + f);
+    qp.q(ln + c) -= t * b * cl;
+    qp.q(gm + f) -= b * cg / t;
+    qp.r += 0.5 * b * (t * cl * cl + cg * cg / t);
+  }
+}
+
 }  // namespace
 
 std::string RelaxedStepLossSettings::validation_error() const {
@@ -58,9 +80,7 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
   if (const std::string e = st.validation_error(); !e.empty()) throw InputError("RelaxedStepLossSettings: " + e);
   validate_step_loss_input(s, target, dt);
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
-  if (center != nullptr && (center->size() != nc + nf || !center->allFinite()))
-    throw InputError("relaxed step loss: proximal center: expected " + std::to_string(nc + nf) +
-                     " finite entries [λ̃n; γ], got " + std::to_string(center->size()));
+  if (center != nullptr) check_center(s, *center);
   const Index ln = nd, bp = nd + nc, bm = bp + nf, gm = bm + nf, nx = gm + nf;
   const Vector S = contact_scales(s, contact_bodies(s));
   const Vector m = s.minv.cwiseInverse();
@@ -92,15 +112,7 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
   const Vector phip = s.phi.cwiseMax(0.0) / dt;
   qp.q.segment(ln, nc) = st.a2 * S.cwiseProduct(phip);
   qp.r = st.a1 * (s.v_star - target).squaredNorm();
-  if (center != nullptr) {  // (b/2)(t(λ̃n − c_λ)² + (γ − c_γ)²/t): the linear and constant parts
-    for (Index f = 0; f < nf; ++f) {
-      const int c = s.friction_rows[static_cast<std::size_t>(f)];
-      const double b = st.a2 * s.mu(f) * S(c), cl = (*center)(c), cg = (*center)(nc + f);
-      qp.q(ln + c) -= t * b * cl;
-      qp.q(gm + f) -= b * cg / t;
-      qp.r += 0.5 * b * (t * cl * cl + cg * cg / t);
-    }
-  }
+  if (center != nullptr) add_center_terms(s, S, st, *center, qp);
   // Momentum: M Δv − Jnᵀ S λ̃n − Jtᵀ S (β̃⁺ − β̃⁻) = 0.
   std::vector<Triplet> at, gt;
   at.reserve(static_cast<std::size_t>(nd + s.Jn.nonZeros() + 2 * s.Jt.nonZeros()));
@@ -178,23 +190,20 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
   const RelaxedStepLossSettings& st = impl_->settings;
   Vector c_used = center != nullptr ? *center : Vector();
   bool centered = center != nullptr;
-  QpProblem qp = relaxed_step_qp(s, target, dt, st, centered ? &c_used : nullptr);  // validates
+  QpProblem qp = relaxed_step_qp(s, target, dt, st);  // validates; centre terms added below
+  if (centered) check_center(s, c_used);
+  const Vector q_plain = qp.q;
+  const double r_plain = qp.r;
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
   const Index ln = nd, bp = nd + nc, bm = bp + nf, gm = bm + nf;
   StepLossResult r;
-  r.grad.Jn = s.Jn;
-  r.grad.Jt = s.Jt;
-  for (Index k = 0; k < r.grad.Jn.nonZeros(); ++k) r.grad.Jn.valuePtr()[k] = 0.0;
-  for (Index k = 0; k < r.grad.Jt.nonZeros(); ++k) r.grad.Jt.valuePtr()[k] = 0.0;
-  r.grad.phi = Vector::Zero(nc);
-  r.grad.mu = Vector::Zero(nf);
-  r.grad.minv = Vector::Zero(nd);
-  r.grad.v_star = Vector::Zero(nd);
+  r.grad.set_zero(s);
   const std::vector<std::vector<int>> bodies = contact_bodies(s);
   const Vector S = contact_scales(s, bodies);
   impl_->shifts.resize(nf);
   for (Index f = 0; f < nf; ++f) impl_->shifts(f) = st.a2 * s.mu(f) * S(s.friction_rows[static_cast<std::size_t>(f)]);
   impl_->proximal_point = Vector::Zero(nc + nf);
+  if (centered) add_center_terms(s, S, st, c_used, qp);
   if (nc == 0) {  // no contact: ℓ = a1‖v* − v̄‖²
     r.status = ContactStatus::solved;
     r.v_next = s.v_star;
@@ -207,7 +216,11 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
   const QpResult* last = nullptr;
   const int max_it = iterations > 0 ? iterations : st.proximal_iterations;
   for (int it = 0; it < max_it; ++it) {
-    if (it > 0) qp = relaxed_step_qp(s, target, dt, st, &c_used);
+    if (it > 0) {  // only q and r depend on the centre
+      qp.q = q_plain;
+      qp.r = r_plain;
+      add_center_terms(s, S, st, c_used, qp);
+    }
     if (impl_->ready && impl_->solver.can_update(qp)) {
       impl_->solver.update(qp);
       ++impl_->updates;

@@ -1,53 +1,26 @@
 // The convex model's phase QPs in the dual and the lifted formulation (convex_model_qp.hpp).
 #include "convex_model_qp.hpp"
 
+#include <lcprelax/models/convex_qp_rows.hpp>
+#include <lcprelax/sparse/triplets.hpp>
+
 #include <cmath>
 #include <limits>
 #include <vector>
 
-namespace lcprelax::detail {
-namespace {
+namespace lcprelax {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-SparseMatrix upper(const SparseMatrix& A) {
-  SparseMatrix U = A.triangularView<Eigen::Upper>();
-  U.makeCompressed();
-  return U;
-}
-
-SparseMatrix from_triplets(Index rows, Index cols, const std::vector<Triplet>& t) {
-  SparseMatrix A(rows, cols);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
-
-// Appends the entries of `A` at (row_offset + i, col_offset + j), each times `scale`;
-// `transpose` appends Aᵀ instead.
-void append(std::vector<Triplet>& t, const SparseMatrix& A, Index row_offset, Index col_offset, double scale,
-            bool transpose = false) {
-  for (Index j = 0; j < A.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
-      const Index r = transpose ? j : it.row(), c = transpose ? it.row() : j;
-      t.emplace_back(row_offset + r, col_offset + c, scale * it.value());
-    }
-}
-
-// Lifted equality M w − Jnᵀ λn (− Jtᵀ λt when `friction`) = 0, with w first in x.
-void lifted_equality(const ContactSystem& s, bool friction, QpProblem& p) {
+void lifted_momentum_equality(const ContactSystem& s, bool friction, QpProblem& p) {
   const Index nv = s.num_dofs(), nc = s.num_contacts();
   std::vector<Triplet> t;
   for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
-  append(t, s.Jn, 0, nv, -1.0, /*transpose=*/true);
-  if (friction) append(t, s.Jt, 0, nv + nc, -1.0, /*transpose=*/true);
+  append_triplets(t, s.Jn, 0, nv, -1.0, /*transpose=*/true);
+  if (friction) append_triplets(t, s.Jt, 0, nv + nc, -1.0, /*transpose=*/true);
   p.A = from_triplets(nv, p.num_variables(), t);
   p.b = Vector::Zero(nv);
 }
 
-// Rows nc.. of phase 2: eᵀλn ≤ κ (row nc), then λt − μλn ≤ 0 and λt + μλn ≥ 0 per
-// friction row; λn starts at column `ln`, λt at `lt`.
-void friction_rows(const ContactSystem& s, Index ln, Index lt, std::vector<Triplet>& t) {
+void append_friction_cone_rows(const ContactSystem& s, Index ln, Index lt, std::vector<Triplet>& t) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   for (Index i = 0; i < nc; ++i) t.emplace_back(nc, ln + i, 1.0);
   for (Index f = 0; f < nf; ++f) {
@@ -57,6 +30,13 @@ void friction_rows(const ContactSystem& s, Index ln, Index lt, std::vector<Tripl
     t.emplace_back(nc + 2 + 2 * f, ln + s.friction_rows[f], s.mu(f));
   }
 }
+
+}  // namespace lcprelax
+
+namespace lcprelax::detail {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -80,13 +60,13 @@ ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d) {
   ConvexPhaseQp out;
   if (d.form == ConvexFormulation::dual) {
     out.problem = QpProblem(nc);
-    out.problem.P = upper(d.W.topLeftCorner(nc, nc));
+    out.problem.P = upper_triangle(d.W.topLeftCorner(nc, nc));
   } else {  // x = (w, λn): ½ wᵀ M w + bnᵀ λn, M w = Jnᵀ λn
     out.problem = QpProblem(nv + nc);
     std::vector<Triplet> t;
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
     out.problem.P = from_triplets(nv + nc, nv + nc, t);
-    lifted_equality(s, /*friction=*/false, out.problem);
+    lifted_momentum_equality(s, /*friction=*/false, out.problem);
     out.lambda_offset = nv;
   }
   QpProblem& p = out.problem;
@@ -110,19 +90,19 @@ ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, double rho) {
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
     for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i));
     p.P = from_triplets(n, n, t);
-    lifted_equality(s, /*friction=*/true, p);
-    append(g, s.Jn, 0, 0, 1.0);
+    lifted_momentum_equality(s, /*friction=*/true, p);
+    append_triplets(g, s.Jn, 0, 0, 1.0);
   } else {
     SparseMatrix P = d.W;
     for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i);
-    p.P = upper(P);
+    p.P = upper_triangle(P);
     for (Index c = 0; c < n; ++c)
       for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
         if (it.row() < nc) g.emplace_back(it.row(), c, it.value());
   }
   p.q.segment(ln, nc) = s.Jn * s.v_star;
   p.q.segment(lt, nf) = s.Jt * s.v_star;
-  friction_rows(s, ln, lt, g);
+  append_friction_cone_rows(s, ln, lt, g);
   p.G = from_triplets(m, n, g);
   p.l = Vector::Constant(m, -kInf);
   p.u = Vector::Constant(m, kInf);
