@@ -1,4 +1,4 @@
-// `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--solution OUT.json] [--json]`
+// `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--time-limit S] [--verbose] [--solution OUT.json] [--json]`
 // (docs/cli.md): reads a QPS file, solves it with the interior-point QP and reports status,
 // objective, iterations, residuals, duality gap and the setup + solve wall time. With
 // --solution, OUT.json holds `x`, `y_rows` (one multiplier per constraint row of the file,
@@ -24,6 +24,8 @@ struct QpOptions {
   int max_iter = QpSettings{}.max_iter;
   std::string solution;
   std::string kkt_backend = "automatic";
+  double time_limit = QpSettings{}.time_limit;
+  bool verbose = false;
   bool json = false;
 };
 
@@ -33,6 +35,9 @@ QpSettings settings_from(const QpOptions& o) {
   QpSettings s;
   s.eps_abs = o.eps;
   s.max_iter = o.max_iter;
+  require_option(o.time_limit > 0.0, "--time-limit", "must be positive");
+  s.time_limit = o.time_limit;
+  s.verbose = o.verbose;
   if (o.kkt_backend == "automatic") s.kkt_backend = KktBackend::automatic;
   else if (o.kkt_backend == "cholmod") s.kkt_backend = KktBackend::cholmod;
   else if (o.kkt_backend == "dense") s.kkt_backend = KktBackend::dense;
@@ -112,6 +117,8 @@ Command add_qp_command(CLI::App& parent) {
                  "KKT factorization: automatic (dense up to QpSettings::dense_max_kkt rows, else cholmod), "
                  "cholmod, dense, mumps (PETSc, this process) or mumps-distributed (over the MPI ranks of mpiexec)")
       ->capture_default_str();
+  qp->add_option("--time-limit", options->time_limit, "Seconds of the solve (QpSettings::time_limit; default none)");
+  qp->add_flag("--verbose", options->verbose, "One line per interior-point iteration on stderr");
   add_json_flag(*qp, options->json);
   return Command{qp, [options] { return run_qp(*options); }};
 }

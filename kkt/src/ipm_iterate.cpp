@@ -22,6 +22,9 @@ void make_side(Side& side, const Vector& bounds, bool upper) {
   side.rc = Vector::Zero(m);
   side.ds = Vector::Zero(m);
   side.dz = Vector::Zero(m);
+  side.ds_saved = Vector::Zero(m);
+  side.dz_saved = Vector::Zero(m);
+  side.rc_saved = Vector::Zero(m);
 }
 
 void side_residual(Side& side, const Vector& v) {

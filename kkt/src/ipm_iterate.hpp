@@ -24,6 +24,7 @@ struct Side {
   Vector s, z;             ///< slack and multiplier (> 0)
   Vector r, rc;            ///< primal residual and complementarity right-hand side
   Vector ds, dz;           ///< step
+  Vector ds_saved, dz_saved, rc_saved;  ///< a step and its rc kept while a corrector is tried
   Index size() const { return static_cast<Index>(idx.size()); }
 };
 

@@ -221,6 +221,11 @@ void KktSystem::apply_k0(const StandardForm& f, const Vector& dx, const Vector& 
   oy.noalias() = f.E * dx;
   oz.noalias() = f.G * dx;
   oz.array() -= dz.array() / Dg_.array();
+  if (refine_regularized_) {
+    ox += rho_ * dx;
+    if (f.me > 0) oy -= delta_ * dy;
+    oz -= delta_rows_ * dz;
+  }
 }
 
 void KktSystem::approximate_solve(const StandardForm& f, const Vector& rx, const Vector& ry, const Vector& rz,

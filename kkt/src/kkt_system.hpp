@@ -50,6 +50,9 @@ class KktSystem {
   /// Returns the number of refinement steps taken.
   int solve(const StandardForm& f, const Vector& rx, const Vector& ry, const Vector& rz, Vector& dx, Vector& dy,
             Vector& dz, int max_refinement) const;
+  /// Refinement target of solve(): K0 (default) or the factorized, regularized matrix (the
+  /// proximal iteration's Newton system, whose regularization is part of the step).
+  void refine_against_regularized(bool on) { refine_regularized_ = on; }
 
   KktForm form() const { return form_; }
   KktBackend backend() const { return backend_; }
@@ -82,6 +85,7 @@ class KktSystem {
   std::vector<ProductTerm> products_;
   Vector Db_, Dg_;                       // values of the last factorization
   double rho_ = 0.0, delta_ = 0.0, delta_rows_ = 0.0;
+  bool refine_regularized_ = false;
   mutable double last_relative_residual_ = 0.0;
   mutable Vector work_;                  // scratch for solves
   mutable Vector ox_, oy_, oz_, cx_, cy_, cz_, nx_, ny_, nz_;  // refinement scratch (no allocation per solve)

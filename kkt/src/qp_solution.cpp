@@ -37,10 +37,10 @@ double support(double z, double lo, double hi) {
 
 void Workspace::resize(const StandardForm& f, const QpProblem& p) {
   const Index n = f.n, me = f.me, mg = f.mg;
-  for (Vector* v : {&rd, &dx, &last_dx, &zb, &dzb, &xib, &rx, &xc, &rhs_x, &uzb, &cert_zb, &cert_n})
+  for (Vector* v : {&rd, &dx, &saved_dx, &last_dx, &zb, &dzb, &xib, &rx, &xc, &rhs_x, &uzb, &cert_zb, &cert_n})
     v->setZero(n);
-  for (Vector* v : {&rp, &dy, &last_dy, &ry, &yi, &cert_me}) v->setZero(me);
-  for (Vector* v : {&dz, &zg, &xig, &rz, &dvg, &gc, &uzg, &cert_zg, &cert_mg}) v->setZero(mg);
+  for (Vector* v : {&rp, &dy, &saved_dy, &last_dy, &ry, &yi, &cert_me}) v->setZero(me);
+  for (Vector* v : {&dz, &saved_dz, &zg, &xig, &rz, &dvg, &gc, &uzg, &cert_zg, &cert_mg}) v->setZero(mg);
   Px.setZero(p.num_variables());
   zb_saved.setZero(p.num_variables());
   Aty.setZero(p.num_variables());

@@ -46,6 +46,7 @@ struct Workspace {
   Vector zg, zb;                 ///< signed multipliers of rows (mg) and bounds (n)
   Vector xig, xib, rx, ry, rz, dvg;  ///< newton_step: ξ terms, right-hand sides, G̃·dx
   Vector dzb;                    ///< newton_step: signed bound-multiplier step (n)
+  Vector saved_dx, saved_dy, saved_dz;  ///< centrality correctors: the step being improved
   Vector empty;                  ///< size 0 (recover_side_steps without the bound correction)
   Vector xc, gc, rhs_x;          ///< cold start: projections and right-hand side
   // Unscaling and certificates.
@@ -126,6 +127,11 @@ struct QpSolver::Impl {
   /// Newton step for work.rd, work.rp and the sides' rc into work.dx, dy, dz and the
   /// sides' ds, dz; returns refinement steps.
   int newton_step();
+  /// Gondzio's multiple centrality correctors (qp_ipm_loop.cpp) on the step in work.dx,
+  /// dy, dz and the sides' ds, dz, whose rc holds its complementarity right-hand side;
+  /// `amax` is that step's largest feasible length, `mu_target` = σμ. Returns the largest
+  /// feasible length of the step kept; counts the accepted correctors in info.
+  double centrality_correctors(double amax, double mu_target, QpInfo& info);
   bool initial_point(QpInfo& info);  ///< false if the factorization failed
   /// it.x, it.y and work.zg, work.zb from an unscaled point (x, y, z, z_bounds) of the
   /// problem (warm starts, polishing), then the side residuals (vg = G̃x̃).

@@ -56,6 +56,7 @@ struct QpInfo {
   int factorizations = 0;        ///< numeric KKT factorizations in this solve()
   int factor_retries = 0;        ///< factorizations repeated with raised regularization
   int refinement_steps = 0;      ///< total iterative-refinement steps
+  int centrality_correctors = 0; ///< accepted Gondzio correctors (QpSettings::centrality_correctors)
   KktForm kkt_form = KktForm::automatic;  ///< the form actually used
   KktBackend kkt_backend = KktBackend::automatic;  ///< the backend actually used
   long kkt_factor_nnz = 0;       ///< nnz of the KKT factor
