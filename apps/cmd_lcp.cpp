@@ -2,14 +2,17 @@
 // `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` (docs/cli.md):
 // Siconos numerics problems, errors as Siconos defines them (io/siconos_errors.hpp).
 // lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds; OUT: z, w.
-// fc2d JSON: status, contacts, error, seconds; OUT: r, u (u = W r + q). fc2d is solved as
-// the LCP of lcp/fc2d_lcp.hpp; with --solver ipm that LCP must be monotone, which it
-// generally is not: the status then reports the failure.
+// fc2d JSON: status, contacts, error, seconds (lemke: pivots, crash_sweeps, crash_pivots,
+// start = guess | crash | cold); OUT: r, u (u = W r + q). fc2d is solved as the LCP of
+// lcp/fc2d_lcp.hpp; with --solver ipm that LCP must be monotone, which it generally is not:
+// the status then reports the failure. Lemke starts by default from the basis suggested by
+// projected Gauss–Seidel sweeps (--crash pgs, lcp/fc2d_pgs.hpp; crash start of lemke.hpp).
 #include "cli_common.hpp"
 
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
 #include <lcprelax/lcp/fc2d_lcp.hpp>
+#include <lcprelax/lcp/fc2d_pgs.hpp>
 #include <lcprelax/lcp/lcp_ipm.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/core/errors.hpp>
@@ -24,6 +27,8 @@ struct LcpOptions {
   std::string file;
   std::string solver = "lemke";
   std::string solution;
+  std::string crash = "pgs";  // fc2d only
+  int crash_sweeps = 50;
   bool json = false;
 };
 
@@ -61,10 +66,19 @@ int run_lcp(const LcpOptions& o) {
 }
 
 int run_fc2d(const LcpOptions& o) {
+  require_option(o.crash == "pgs" || o.crash == "none", "--crash", "must be pgs or none");
+  require_option(o.crash_sweeps >= 1 && o.crash_sweeps <= 100000, "--crash-sweeps", "must be in [1, 100000]");
   const io::Fc2dData d = io::read_siconos_fc2d(o.file);
   const Stopwatch watch;
   const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
-  const LcpResult r = solve(lcp.M, lcp.q, o.solver);
+  LcpResult r;
+  int sweeps = 0;
+  if (o.solver == "lemke" && o.crash == "pgs") {
+    // Crash start (lemke.hpp): Lemke from the basis that PGS sweeps suggest (fc2d_pgs.hpp).
+    r = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, o.crash_sweeps, LemkeSettings{}, &sweeps);
+  } else {
+    r = solve(lcp.M, lcp.q, o.solver);
+  }
   Vector reactions, velocities;
   const bool ok = r.info.status == LcpStatus::solved;
   if (r.z.size() == lcp.q.size()) fc2d_from_lcp(r.z, d.W, d.q, reactions, velocities);
@@ -74,6 +88,16 @@ int run_fc2d(const LcpOptions& o) {
   j["contacts"] = d.contacts;
   j["error"] = ok ? number_or_null(io::fc2d_error(d, reactions)) : Json(nullptr);
   j["seconds"] = seconds;
+  if (o.solver == "lemke") {
+    j["pivots"] = r.info.pivots;
+    j["crash_sweeps"] = sweeps;
+    j["crash_pivots"] = r.info.crash_pivots;
+    // How the solution was reached: the PGS basis was already the solution's (guess), Lemke
+    // from it (crash), or from the all-w basis (cold: --crash none, or after a failed crash).
+    j["start"] = r.info.warm_started                                      ? "guess"
+                 : r.info.crash_started && r.info.crash_pivots == r.info.pivots ? "crash"
+                                                                                : "cold";
+  }
   if (!o.solution.empty())
     write_json_file(o.solution, Json{{"r", array_or_nulls(reactions)}, {"u", array_or_nulls(velocities)}});
   report(o, j, r);
@@ -88,6 +112,13 @@ Command add_command(CLI::App& parent, const char* name, const char* help, int (*
       ->check(CLI::IsMember({"lemke", "ipm"}))
       ->capture_default_str();
   app->add_option("--solution", options->solution, "Write the solution to this JSON file");
+  if (run == run_fc2d) {
+    app->add_option("--crash", options->crash,
+                    "lemke: start basis from projected Gauss-Seidel sweeps (pgs) or the all-w basis (none)")
+        ->capture_default_str();
+    app->add_option("--crash-sweeps", options->crash_sweeps, "lemke with --crash pgs: most PGS sweeps")
+        ->capture_default_str();
+  }
   add_json_flag(*app, options->json);
   return Command{app, [options, run] { return run(*options); }};
 }

@@ -5,7 +5,7 @@
 //       [--classes C] [--method hard|relaxed|convex] [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F] [--optimizer sgd|adam] [--lr α] [--lr-decay d]
-//       [--proximal-iterations K] [--unbiased-epochs U] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--json]
+//       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--json]
 //
 // Scene: --scene FILE.json (scenes/scene_json.hpp), or --bodies N: the learning pile of N
 // polygons of C shape classes dropped into a box (learn/scene_dataset.hpp
@@ -57,7 +57,6 @@ struct LearnSceneOptions {
   double phase1_regularization = learn::ConvexStepLossSettings{}.phase1_regularization;
   double deviation = learn::ConvexStepLossSettings{}.deviation;
   bool phase1_deviation = learn::ConvexStepLossSettings{}.phase1_deviation;
-  int unbiased_epochs = 0;
   double beta2 = learn::OptimizerSettings{}.beta2;
   std::string log, plot;
   bool json = false;
@@ -111,9 +110,6 @@ int run_learn_scene(const LearnSceneOptions& o) {
   require_option(o.bodies >= 1 && o.bodies <= 100000, "--bodies", "must be in [1, 100000]");
   require_option(o.steps >= 1 && o.steps <= 1000000, "--steps", "must be in [1, 1000000]");
   require_option(o.epochs >= 0, "--epochs", "must be >= 0");
-  require_option(o.unbiased_epochs >= 0, "--unbiased-epochs", "must be >= 0");
-  require_option(o.unbiased_epochs == 0 || (ls.method == learn::LossMethod::convex && o.phase1_deviation),
-                 "--unbiased-epochs", "needs --method convex with the phase-1 deviation penalty on");
   require_option(o.batch >= 0, "--batch", "must be >= 0 (0: all training transitions)");
   require_option(o.threads >= 0 && o.threads <= 1024, "--threads", "must be in [0, 1024] (0: OpenMP default)");
   require_option(std::isfinite(o.noise) && o.noise >= 0, "--noise", "must be finite and >= 0");
@@ -157,38 +153,13 @@ int run_learn_scene(const LearnSceneOptions& o) {
   const learn::ParameterSet truth = map.parameters(data.scene.world);
   learn::ParameterSet theta = learn::perturb_scene_parameters(truth, map, o.perturb, o.seed);
   const learn::ParameterSet initial = theta;
-  learn::SceneObjective biased_objective(data, map, ls);
+  learn::SceneObjective objective(data, map, ls);
   std::vector<Index> training, validation;
-  learn::split_samples(biased_objective.num_samples(), 0.2, o.seed, training, validation);
+  learn::split_samples(objective.num_samples(), 0.2, o.seed, training, validation);
 
   Stopwatch clock;
   learn::TrainResult result;
-  if (o.epochs > 0) result = learn::train(biased_objective, theta, training, validation, t);
-  // Continuation (convex): the phase-1 deviation penalty shapes the loss far from the
-  // truth but biases its minimizer (ConvexStepLossSettings::phase1_deviation); the last
-  // epochs train the unbiased loss from where the biased one ended.
-  learn::SceneLossSettings unbiased_settings = ls;
-  unbiased_settings.convex.phase1_deviation = false;
-  learn::SceneObjective unbiased_objective(data, map, unbiased_settings);
-  learn::SceneObjective& objective = o.unbiased_epochs > 0 ? unbiased_objective : biased_objective;
-  if (o.unbiased_epochs > 0) {
-    learn::TrainSettings t2 = t;
-    t2.epochs = o.unbiased_epochs;
-    if (!t2.log_csv.empty()) t2.log_csv += ".unbiased.csv";  // the second stage's own log
-    const learn::TrainResult second = learn::train(unbiased_objective, theta, training, validation, t2);
-    const int offset = static_cast<int>(result.history.size());
-    const double seconds_before = result.seconds;
-    for (learn::EpochRecord r : second.history) {
-      r.epoch += offset;
-      r.seconds += seconds_before;
-      result.history.push_back(std::move(r));
-    }
-    result.seconds += second.seconds;
-    result.failed += second.failed;
-    if (result.first_failure.empty()) result.first_failure = second.first_failure;
-    result.converged = second.converged;
-    result.stop_reason = second.stop_reason + " (unbiased stage)";
-  }
+  if (o.epochs > 0) result = learn::train(objective, theta, training, validation, t);
   const learn::BatchResult final_eval = learn::evaluate_mean(objective, theta, training, o.threads, t.distributed);
   const double seconds = clock.seconds();
   if (!o.plot.empty() && mpi::mpi_rank() == 0) write_plot(o.plot, result, truth, initial, map);
@@ -210,8 +181,7 @@ int run_learn_scene(const LearnSceneOptions& o) {
   j["relative_error"] = errors;
   j["max_relative_error"] = number_or_null(worst);
   j["final_loss"] = number_or_null(final_eval.loss);
-  add_train_outcome(j, result, o.epochs + o.unbiased_epochs);
-  j["unbiased_epochs"] = o.unbiased_epochs;
+  add_train_outcome(j, result, o.epochs);
   j["seconds"] = seconds;
   j["bodies"] = static_cast<int>(data.scene.world.bodies.size());
   j["transitions"] = static_cast<int>(data.transitions.size());
@@ -248,9 +218,6 @@ Command add_learn_scene_command(CLI::App& learn) {
       ->capture_default_str();
   app->add_option("--phase1-deviation", o->phase1_deviation,
                   "convex: put the deviation penalty in phase 1 too (biased on the model's own data)")
-      ->capture_default_str();
-  app->add_option("--unbiased-epochs", o->unbiased_epochs,
-                  "convex: after --epochs, train this many more epochs without the phase-1 deviation penalty")
       ->capture_default_str();
   app->add_option("--beta2", o->beta2, "adam: decay of the squared-gradient average, in [0, 1)")->capture_default_str();
   app->add_option("--proximal-iterations", o->proximal_iterations,

@@ -15,7 +15,8 @@
 //         siconos_lemke (lcp_lexicolemke through linearComplementarity_driver).
 //   fc2d: lcprelax_dense (skipped above --dense-max-contacts contacts: minutes on the
 //         667-contact granular problem), lcprelax_sparse (both on fc2d_to_lcp, 4nc
-//         unknowns), siconos_fc2d_lemke (SICONOS_FRICTION_2D_LEMKE, its own 3nc-unknown
+//         unknowns), lcprelax_crash (sparse, crash-started from 50 projected Gauss–Seidel
+//         sweeps, lcp/fc2d_pgs.hpp, their time included), siconos_fc2d_lemke (SICONOS_FRICTION_2D_LEMKE, its own 3nc-unknown
 //         LCP), siconos_fc2d_nsgs (SICONOS_FRICTION_2D_NSGS, tolerance 1e-10).
 // Every answer is scored with lcprelax::io::lcp_error / io::fc2d_error, i.e. the error as
 // Siconos defines it, recomputed from the returned z (LCP) or r (fc2d, u = W r + q):
@@ -35,6 +36,7 @@
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
 #include <lcprelax/lcp/fc2d_lcp.hpp>
+#include <lcprelax/lcp/fc2d_pgs.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
 #include <algorithm>
@@ -193,6 +195,27 @@ void run_fc2d(const std::string& name, const lcprelax::io::Fc2dData& d, const Op
   if (d.contacts <= opt.dense_max_contacts)
     out.push_back(lcprelax_row(lcp.M, lcp.q, lcprelax::LemkeMethod::dense, opt.refactor_interval, lcp_error));
   out.push_back(lcprelax_row(lcp.M, lcp.q, lcprelax::LemkeMethod::sparse, opt.refactor_interval, lcp_error));
+  {  // sparse Lemke crash-started from 50 PGS sweeps (their time included)
+    lcprelax::LemkeSettings settings;
+    settings.method = lcprelax::LemkeMethod::sparse;
+    settings.refactor_interval = opt.refactor_interval;
+    lcprelax::LcpResult result;
+    Row row;
+    row.seconds = min_time([&] {
+      const auto t0 = std::chrono::steady_clock::now();
+      result = lcprelax::solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50, settings);
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    });
+    row.solver = "lcprelax_crash";
+    row.status = lcprelax::to_string(result.info.status);
+    row.iterations = result.info.pivots;
+    if (result.info.status == lcprelax::LcpStatus::solved) {
+      const Errors e = lcp_error(result.z);
+      row.error = e.error;
+      row.error_scaled = e.scaled;
+    }
+    out.push_back(row);
+  }
   const long lemke_max = std::max<long>(10000, 50L * (3 * d.contacts + 1));
   if (opt.siconos) {
     out.push_back(siconos_row(

@@ -132,7 +132,9 @@ TEST(LemkeAllocation, SparsePivotingSolveAllocatesOnlyInKluFactorizations) {
   expect_solved(c, b.q);
   EXPECT_FALSE(c.warm_started);
   EXPECT_GT(c.pivots, 0);
-  EXPECT_GE(c.refactorizations, 2);  // the rejected warm basis and the final basis at least
+  // The warm basis is the cold solve's final one, still factored: the crash start pivots
+  // from it with block updates, and the final basis is factorized once.
+  EXPECT_GE(c.refactorizations, 1);
   EXPECT_EQ(c.allocations, 0);
   // For the record: with the factorizations counted too (KLU allocates in them).
   const Counted all = warm_solve(LemkeMethod::sparse, a.M, a.q, b.q, false);

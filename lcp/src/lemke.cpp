@@ -5,6 +5,8 @@
 
 #include "lemke_basis.hpp"
 
+#include <lcprelax/sparse/klu_lu.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,6 +41,7 @@ struct LemkeSolver::Impl {
   // Work arrays, sized at setup (the pivot loop allocates nothing).
   Vector xB, a, ratio_col, refine;  // x_B; B⁻¹(entering column); ratio denominators; residual
   Vector z_spare, w_spare;           // storage of result.z / result.w between solves
+  Vector d_cover;                    // the settings' covering vector during a crash start
   std::vector<Index> rows, keep;     // candidate rows of the ratio test
   std::vector<Index> slot;           // row → column of inv_rows
   DenseMatrix inv_rows;              // rows of B⁻¹ for tie-breaks (n × capacity; grows only
@@ -70,6 +73,7 @@ struct LemkeSolver::Impl {
     a.resize(n);
     ratio_col.resize(n);
     refine.resize(n);
+    d_cover.resize(n);
     z_spare.resize(n);
     w_spare.resize(n);
     result.z.resize(0);
@@ -96,6 +100,9 @@ struct LemkeSolver::Impl {
     result.info.complementarity = std::numeric_limits<double>::quiet_NaN();
     result.info.seconds = 0.0;
     result.info.warm_started = false;
+    result.info.crash_started = false;
+    result.info.crash_pivots = 0;
+    result.info.repair_rounds = 0;
     result.info.method = method;
     result.info.refactorizations = 0;
     result.info.regularization = 0.0;
@@ -221,14 +228,78 @@ struct LemkeSolver::Impl {
     return true;
   }
 
-  bool try_warm_start() {
+  // Sets the basis to `warm`; true when it factorizes (x_B = B⁻¹q then holds its values).
+  bool load_warm_basis() {
     if (warm_basis_is_factored()) basic = factored_basic;
     else
       for (Index i = 0; i < n; ++i) basic[i] = warm[i] ? n + i : i;
-    if (!refactor(xB) || xB.minCoeff() < -tol) return false;
+    return refactor(xB);
+  }
+
+  bool try_warm_start(bool factorized) {
+    if (!factorized || xB.minCoeff() < -tol) return false;
     extract_solution();
     result.info.warm_started = has_solution(result.info.status);
     return result.info.warm_started;
+  }
+
+  // Basis repair of a singular crash basis (as simplex codes repair a singular crash basis
+  // by exchanging dependent columns for slacks, e.g. Bixby, "Implementing the simplex method:
+  // the initial basis", ORSA J. Comput. 4, 1992): the z columns that a KLU factorization of
+  // B = [e_i (w_i basic) | −M_:j (z_j basic)] leaves with a zero pivot (relative 1e-10)
+  // become their complements w_j, for at most kRepairRounds factorizations. A granular
+  // pile's approximate solution loads more contacts than the bodies have degrees of
+  // freedom, and the basis it suggests is singular. Allocates (a crash start only).
+  static constexpr int kRepairRounds = 8;
+  bool repair_warm_basis() {
+    for (int round = 0; round < kRepairRounds; ++round) {
+      std::vector<Triplet> t;
+      t.reserve(static_cast<std::size_t>(M.nonZeros() + n));
+      for (Index j = 0; j < n; ++j) {
+        if (!warm[static_cast<std::size_t>(j)]) {
+          t.emplace_back(j, j, 1.0);
+          continue;
+        }
+        for (SparseMatrix::InnerIterator it(M, j); it; ++it) t.emplace_back(it.row(), j, -it.value());
+      }
+      SparseMatrix B(n, n);
+      B.setFromTriplets(t.begin(), t.end());
+      B.makeCompressed();
+      sparse::KluLu klu;
+      if (!klu.analyze(B).ok()) return false;
+      const std::vector<Index> dependent = klu.zero_pivot_columns(B, 1e-10);
+      if (dependent.empty()) return round > 0;
+      bool changed = false;
+      for (Index j : dependent)
+        if (warm[static_cast<std::size_t>(j)]) {
+          warm[static_cast<std::size_t>(j)] = false;
+          changed = true;
+        }
+      if (!changed) return false;
+      ++result.info.repair_rounds;
+    }
+    return false;
+  }
+
+  // Lemke from the factorized warm basis B whose basic solution x_B = B⁻¹q has negative
+  // entries (a crash start, LemkeSettings::crash_start): with the covering vector d = B·1
+  // the artificial z₀'s column −d reads −1 in B's coordinates, so z₀ enters at the most
+  // negative x_B,i exactly as it enters at the most negative q_i from the all-w basis, and
+  // the pivots that follow are Lemke's method on the principal pivotal transform of the
+  // LCP with respect to B (Cottle, Pang & Stone 1992, §4.4 and §2.3). A basis close to the
+  // solution's leaves few negative entries and the path is short. d is restored afterwards;
+  // true only when the path ends solved.
+  bool try_crash_start() {
+    d_cover = d;
+    d.setZero();
+    const detail::LemkeColumns cols{&M, &d, n};
+    for (Index k = 0; k < n; ++k) cols.add_to(basic[k], 1.0, d);
+    pivot_from_current_basis();
+    d = d_cover;
+    const bool solved = has_solution(result.info.status);
+    result.info.crash_started = true;
+    result.info.crash_pivots = result.info.pivots;
+    return solved;
   }
 
   void run() {
@@ -239,12 +310,28 @@ struct LemkeSolver::Impl {
       result.info.complementarity = 0.0;
       return finish(LcpStatus::solved, "empty problem");
     }
-    if (!warm.empty() && try_warm_start()) return;
+    long crash_pivots = 0;
+    if (!warm.empty()) {
+      bool factorized = load_warm_basis();
+      if (!factorized && settings.crash_start && repair_warm_basis()) factorized = load_warm_basis();
+      if (try_warm_start(factorized)) return;
+      if (factorized && settings.crash_start) {
+        if (try_crash_start()) return;
+        crash_pivots = result.info.pivots;  // a failed crash path: cold start, pivots add up
+        factor_current = false;
+      }
+    }
     for (Index i = 0; i < n; ++i) basic[i] = i;
     if (q.minCoeff() >= 0) return extract_solution();  // z = 0 solves it
-
     if (!refactor(xB)) return finish(LcpStatus::numerical_error, "identity basis failed to factorize");
-    // z₀ enters at the most negative q_i/d_i (lexicographically on [q, I]/d).
+    pivot_from_current_basis();
+    result.info.pivots += crash_pivots;
+  }
+
+  // Lemke's pivots from the factorized current basis (without z₀) and x_B = B⁻¹q: z₀
+  // enters at the most negative x_B,i/(B⁻¹d)_i (lexicographically on [x_B, B⁻¹]/(B⁻¹d)).
+  void pivot_from_current_basis() {
+    result.info.pivots = 0;
     Index entering = z0();
     basis->solve_column(entering, a);  // = −d
     ratio_col = -a;

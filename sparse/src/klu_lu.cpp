@@ -5,6 +5,8 @@
 
 #include <klu.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "matrix_checks.hpp"
@@ -150,6 +152,30 @@ FactorResult KluLu::factorize(const SparseMatrix& A) {
   m.factored = true;
   ++numeric_factorizations_;
   return {};
+}
+
+std::vector<Index> KluLu::zero_pivot_columns(const SparseMatrix& A, double relative_tolerance) {
+  std::vector<Index> out;
+  if (!impl_) return out;
+  Impl& m = *impl_;
+  if (!m.analysed || m.n == 0) return out;
+  detail::CompressedRef ref(A);
+  const SparseMatrix& M = ref.get();
+  if (!m.check(M).ok()) return out;
+  m.free_numeric();
+  m.common.halt_if_singular = 0;
+  m.numeric = klu_factor(ptr(M.outerIndexPtr()), ptr(M.innerIndexPtr()), ptr(M.valuePtr()), m.symbolic, &m.common);
+  m.common.halt_if_singular = 1;
+  if (!m.numeric) return out;
+  // Udiag holds U's diagonal in KLU's factored order; Symbolic->Q maps position → column.
+  const double* udiag = static_cast<const double*>(m.numeric->Udiag);
+  const int* q = m.symbolic->Q;
+  double largest = 0.0;
+  for (Index k = 0; k < m.n; ++k) largest = std::max(largest, std::abs(udiag[k]));
+  for (Index k = 0; k < m.n; ++k)
+    if (!(std::abs(udiag[k]) > relative_tolerance * largest)) out.push_back(q[k]);
+  m.free_numeric();
+  return out;
 }
 
 FactorResult KluLu::refactorize(const SparseMatrix& A) {

@@ -83,6 +83,10 @@ struct LemkeSettings {
   double regularization = 1e-10;
   /// Covering vector d > 0 of the artificial variable (empty: all ones).
   Vector covering;
+  /// When a warm-start basis (LemkeSolver::warm_start) factorizes but its basic solution is
+  /// infeasible, run Lemke from it (a crash start, lemke.hpp) before the cold start from
+  /// the all-w basis; false: go straight to the cold start.
+  bool crash_start = false;
 
   /// Empty when valid, else a message naming the first bad field.
   std::string validation_error() const;
@@ -95,6 +99,9 @@ struct LcpInfo {
   double complementarity = std::numeric_limits<double>::quiet_NaN();  ///< max|min(z, w)|
   double seconds = 0.0;
   bool warm_started = false;  ///< the warm-start basis was complementary and feasible
+  bool crash_started = false;  ///< Lemke ran from the (infeasible) warm-start basis
+  long crash_pivots = 0;       ///< pivots of that crash path (included in pivots)
+  int repair_rounds = 0;    ///< rounds of basis repair of a singular crash basis (lemke.cpp)
   LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
   long refactorizations = 0;  ///< basis factorizations from scratch
   double regularization = 0.0;  ///< ε of the accepted retry on M + εI, 0 if none

@@ -19,7 +19,12 @@
 // give the same pivot sequence up to roundoff in ties.
 //
 // Warm start: a basis (which of z_i / w_i is basic) whose basic solution is feasible
-// solves in zero pivots; otherwise the solve starts cold (from the all-w basis). When the
+// solves in zero pivots. If it factorizes but is infeasible, Lemke runs from it (crash
+// start, LemkeSettings::crash_start): the covering vector becomes d = B·1, so that z₀
+// enters at the most negative basic value, and the pivots continue as in Lemke's method on
+// the LCP transformed by that basis (a good guess, e.g. from an approximate solution, leaves
+// a short path); if that path does not end solved, the solve starts cold (from the all-w
+// basis, the covering vector of the settings) and the pivots of both count. When the
 // warm basis is the one the solver already holds factorized (the final basis of the
 // previous solve, M unchanged), it is not factorized again.
 //

@@ -6,6 +6,7 @@
 #include <lcprelax/sparse/factorization.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace lcprelax::sparse {
 
@@ -29,6 +30,12 @@ class KluLu final : public Factorization {
   const char* name() const override { return "klu_lu"; }
   /// Cheap reciprocal condition estimate of the last factorization (klu_rcond).
   double rcond() const;
+  /// The columns of A (analyze() first, same pattern) that a factorization which goes on
+  /// past zero pivots (KLU's halt_if_singular off) leaves with a pivot |U_kk| ≤
+  /// relative_tolerance·max|U_kk|: each depends on the columns before it in KLU's column
+  /// order, so replacing them can make A nonsingular (basis repair). Empty when A is
+  /// numerically nonsingular. Leaves no usable factorization (factorize() again).
+  std::vector<Index> zero_pivot_columns(const SparseMatrix& A, double relative_tolerance);
 
  private:
   struct Impl;
