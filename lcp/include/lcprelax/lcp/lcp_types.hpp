@@ -83,9 +83,15 @@ struct LemkeSettings {
   double regularization = 1e-10;
   /// Covering vector d > 0 of the artificial variable (empty: all ones).
   Vector covering;
-  /// When a warm-start basis (LemkeSolver::warm_start) factorizes but its basic solution is
-  /// infeasible, run Lemke from it (a crash start, lemke.hpp) before the cold start from
-  /// the all-w basis; false: go straight to the cold start.
+  /// When a warm-start basis (LemkeSolver::warm_start) is singular, repair it, and when it
+  /// factorizes but its basic solution is infeasible, run Lemke from it (a crash start,
+  /// lemke.hpp) before the cold start from the all-w basis. For a basis close to the
+  /// solution's (fc2d_pgs.hpp: granular 667 contacts, 568 pivots against 1,405 cold). Off by
+  /// default: from the previous time step's basis (the simulator's warm start) the crash
+  /// paths are long and often fail (200-body LCP pile: 35,603 pivots per step against 19,545
+  /// cold, bench/run_pile_scaling); from a PGS basis of the pile's island LCP too (crash
+  /// paths end on a ray or a singular basis within 1–34 pivots, then the cold start runs).
+  /// The Siconos fc2d problems are where it pays (`lcprelax fc2d --crash pgs`).
   bool crash_start = false;
 
   /// Empty when valid, else a message naming the first bad field.
