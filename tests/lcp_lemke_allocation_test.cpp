@@ -85,7 +85,9 @@ Counted warm_solve(LemkeMethod method, const SparseMatrix& M, const Vector& q, c
   }
   solver.set_refactorization_hook(nullptr);
   EXPECT_EQ(solver.result().info.method, method);
-  if (has_solution(c.status)) EXPECT_LE(complementarity(M, q2, solver.result().z), 1e-9 * q2.lpNorm<Eigen::Infinity>());
+  if (has_solution(c.status)) {
+    EXPECT_LE(complementarity(M, q2, solver.result().z), 1e-9 * q2.lpNorm<Eigen::Infinity>());
+  }
   std::printf("%s n = %ld: %ld allocations, %ld pivots, %ld refactorizations, warm_started %d\n", to_string(method),
               static_cast<long>(q.size()), c.allocations, c.pivots, c.refactorizations, c.warm_started ? 1 : 0);
   return c;
@@ -132,9 +134,7 @@ TEST(LemkeAllocation, SparsePivotingSolveAllocatesOnlyInKluFactorizations) {
   expect_solved(c, b.q);
   EXPECT_FALSE(c.warm_started);
   EXPECT_GT(c.pivots, 0);
-  // The warm basis is the cold solve's final one, still factored: the crash start pivots
-  // from it with block updates, and the final basis is factorized once.
-  EXPECT_GE(c.refactorizations, 1);
+  EXPECT_GE(c.refactorizations, 2);  // the rejected warm basis and the final basis at least
   EXPECT_EQ(c.allocations, 0);
   // For the record: with the factorizations counted too (KLU allocates in them).
   const Counted all = warm_solve(LemkeMethod::sparse, a.M, a.q, b.q, false);
