@@ -128,8 +128,8 @@ void check_gradient(LossMethod method, ContactModel data_model, double tolerance
 }
 
 // A settled pile without pushes sticks everywhere; from μ₀ = 10× the truth every contact
-// still sticks, the LCP's basis does not change with μ, and the hard loss's ∂ℓ/∂μ is zero to
-// roundoff (the weakness the relaxed loss removes: its ∂ℓ/∂μ is not zero there).
+// still sticks, the LCP's basis does not change with μ, and the hard loss's ∂ℓ/∂μ is exactly
+// zero (the weakness the relaxed loss removes: its ∂ℓ/∂μ is not zero there).
 TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
   LearningPileOptions po;
   po.bodies = 20;
@@ -141,7 +141,6 @@ TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
   const SceneParameterMap map(data.scene.world, SceneParameterSettings{});
   ParameterSet theta = map.parameters(data.scene.world);
   theta.set_value("mu", 10 * theta.value("mu"));
-  double gradients[2] = {0.0, 0.0};
   for (LossMethod method : {LossMethod::hard, LossMethod::relaxed}) {
     SceneLossSettings ls;
     ls.method = method;
@@ -153,14 +152,9 @@ TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
       ASSERT_TRUE(r.ok) << r.message;
       mu_gradient += std::abs(r.gradient(0));
     }
-    gradients[method == LossMethod::hard ? 0 : 1] = mu_gradient;
+    if (method == LossMethod::hard) EXPECT_EQ(mu_gradient, 0.0);
+    else EXPECT_GT(mu_gradient, 0.0);
   }
-  // Zero up to roundoff for the hard loss: Lemke's crash start (the previous solve's basis)
-  // may end on another basis of the same degenerate solution, whose ∂ℓ/∂μ is a sum of
-  // products with zero values computed in floating point (measured 3.3e-29).
-  std::printf("sum |dl/dmu|: hard %.3g, relaxed %.3g\n", gradients[0], gradients[1]);
-  EXPECT_LE(gradients[0], 1e-20);
-  EXPECT_GT(gradients[1], 1e6 * 1e-20);
 }
 
 TEST(SceneGradient, RelaxedMatchesCentralDifferences) { check_gradient(LossMethod::relaxed, ContactModel::lcp); }
