@@ -100,22 +100,16 @@ double min_time(const std::function<double()>& solve) {
   return best;
 }
 
-// score(z) for the LCP solution z.
-Row lcprelax_row(const lcprelax::SparseMatrix& M, const Vector& q, lcprelax::LemkeMethod method, int refactor_interval,
-                 const Score& score) {
-  lcprelax::LemkeSettings settings;
-  settings.method = method;
-  settings.refactor_interval = refactor_interval;
+// A row for one lcprelax solve `run` (timed as a whole), scored by score(z).
+Row lcprelax_row(const std::string& solver, const std::function<lcprelax::LcpResult()>& run, const Score& score) {
   lcprelax::LcpResult result;
   Row row;
   row.seconds = min_time([&] {
     const auto t0 = std::chrono::steady_clock::now();
-    lcprelax::LemkeSolver solver(settings);
-    solver.setup(M, q);
-    result = solver.solve();
+    result = run();
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   });
-  row.solver = method == lcprelax::LemkeMethod::dense ? "lcprelax_dense" : "lcprelax_sparse";
+  row.solver = solver;
   row.status = lcprelax::to_string(result.info.status);
   row.iterations = result.info.pivots;
   if (result.info.status == lcprelax::LcpStatus::solved) {
@@ -124,6 +118,27 @@ Row lcprelax_row(const lcprelax::SparseMatrix& M, const Vector& q, lcprelax::Lem
     row.error_scaled = e.scaled;
   }
   return row;
+}
+
+lcprelax::LemkeSettings lemke_settings(lcprelax::LemkeMethod method, int refactor_interval) {
+  lcprelax::LemkeSettings settings;
+  settings.method = method;
+  settings.refactor_interval = refactor_interval;
+  return settings;
+}
+
+// LemkeSolver from the all-w basis, with the dense or sparse basis.
+Row lemke_row(const lcprelax::SparseMatrix& M, const Vector& q, lcprelax::LemkeMethod method, int refactor_interval,
+              const Score& score) {
+  const char* name = method == lcprelax::LemkeMethod::dense ? "lcprelax_dense" : "lcprelax_sparse";
+  return lcprelax_row(
+      name,
+      [&] {
+        lcprelax::LemkeSolver solver(lemke_settings(method, refactor_interval));
+        solver.setup(M, q);
+        return solver.solve();
+      },
+      score);
 }
 
 // score(x) for Siconos' x (LCP: z, fc2d: r).
@@ -164,8 +179,8 @@ void run_lcp(const fs::path& file, const Options& opt, std::vector<Row>& rows) {
   };
   const Index n = static_cast<Index>(d.q.size());
   std::vector<Row> out;
-  out.push_back(lcprelax_row(d.M, d.q, lcprelax::LemkeMethod::dense, opt.refactor_interval, error));
-  out.push_back(lcprelax_row(d.M, d.q, lcprelax::LemkeMethod::sparse, opt.refactor_interval, error));
+  out.push_back(lemke_row(d.M, d.q, lcprelax::LemkeMethod::dense, opt.refactor_interval, error));
+  out.push_back(lemke_row(d.M, d.q, lcprelax::LemkeMethod::sparse, opt.refactor_interval, error));
   const long max_pivots = std::max<long>(10000, 50L * (n + 1) + (n < 23 ? (1L << n) : 0));
   if (opt.siconos)
     out.push_back(siconos_row(
@@ -193,29 +208,16 @@ void run_fc2d(const std::string& name, const lcprelax::io::Fc2dData& d, const Op
   };
   std::vector<Row> out;
   if (d.contacts <= opt.dense_max_contacts)
-    out.push_back(lcprelax_row(lcp.M, lcp.q, lcprelax::LemkeMethod::dense, opt.refactor_interval, lcp_error));
-  out.push_back(lcprelax_row(lcp.M, lcp.q, lcprelax::LemkeMethod::sparse, opt.refactor_interval, lcp_error));
-  {  // sparse Lemke crash-started from 50 PGS sweeps (their time included)
-    lcprelax::LemkeSettings settings;
-    settings.method = lcprelax::LemkeMethod::sparse;
-    settings.refactor_interval = opt.refactor_interval;
-    lcprelax::LcpResult result;
-    Row row;
-    row.seconds = min_time([&] {
-      const auto t0 = std::chrono::steady_clock::now();
-      result = lcprelax::solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50, settings);
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    });
-    row.solver = "lcprelax_crash";
-    row.status = lcprelax::to_string(result.info.status);
-    row.iterations = result.info.pivots;
-    if (result.info.status == lcprelax::LcpStatus::solved) {
-      const Errors e = lcp_error(result.z);
-      row.error = e.error;
-      row.error_scaled = e.scaled;
-    }
-    out.push_back(row);
-  }
+    out.push_back(lemke_row(lcp.M, lcp.q, lcprelax::LemkeMethod::dense, opt.refactor_interval, lcp_error));
+  out.push_back(lemke_row(lcp.M, lcp.q, lcprelax::LemkeMethod::sparse, opt.refactor_interval, lcp_error));
+  // Sparse Lemke crash-started from 50 PGS sweeps (their time included).
+  out.push_back(lcprelax_row(
+      "lcprelax_crash",
+      [&] {
+        return lcprelax::solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50,
+                                                lemke_settings(lcprelax::LemkeMethod::sparse, opt.refactor_interval));
+      },
+      lcp_error));
   const long lemke_max = std::max<long>(10000, 50L * (3 * d.contacts + 1));
   if (opt.siconos) {
     out.push_back(siconos_row(

@@ -243,18 +243,26 @@ constexpr double kGondzioBetaMax = 10.0;
 
 double QpSolver::Impl::centrality_correctors(double amax, double mu_target, QpInfo& info) {
   detail::Workspace& w = work;
+  // Exchanges the step (dx, dy, dz, the sides' ds, dz, rc) with the saved one (O(1) swaps:
+  // newton_step overwrites every step vector, so the kept step need not be copied).
+  const auto swap_step = [&] {
+    w.dx.swap(w.saved_dx);
+    w.dy.swap(w.saved_dy);
+    w.dz.swap(w.saved_dz);
+    for (detail::Side* s : it.sides()) {
+      s->ds.swap(s->ds_saved);
+      s->dz.swap(s->dz_saved);
+      s->rc.swap(s->rc_saved);
+    }
+  };
   const double lo = kGondzioBetaMin * mu_target, hi = kGondzioBetaMax * mu_target;
   for (int k = 0; k < settings.centrality_correctors && amax < 1.0; ++k) {
     const double aspired = std::min(1.0, amax + kGondzioAspiration);
-    w.saved_dx = w.dx;
-    w.saved_dy = w.dy;
-    w.saved_dz = w.dz;
+    swap_step();  // the current step becomes the saved one
     for (detail::Side* s : it.sides()) {
-      s->ds_saved = s->ds;
-      s->dz_saved = s->dz;
-      s->rc_saved = s->rc;
+      s->rc = s->rc_saved;
       for (Index i = 0; i < s->size(); ++i) {
-        const double v = (s->s(i) + aspired * s->ds(i)) * (s->z(i) + aspired * s->dz(i));
+        const double v = (s->s(i) + aspired * s->ds_saved(i)) * (s->z(i) + aspired * s->dz_saved(i));
         double c = 0.0;
         if (v < lo)
           c = lo - v;
@@ -265,20 +273,12 @@ double QpSolver::Impl::centrality_correctors(double amax, double mu_target, QpIn
     }
     info.refinement_steps += newton_step();
     const double corrected = it.max_step();
-    if (corrected >= amax + kGondzioAcceptance * (aspired - amax)) {
-      amax = corrected;
-      ++info.centrality_correctors;
-      continue;
+    if (corrected < amax + kGondzioAcceptance * (aspired - amax)) {
+      swap_step();  // back to the saved step
+      break;
     }
-    w.dx = w.saved_dx;
-    w.dy = w.saved_dy;
-    w.dz = w.saved_dz;
-    for (detail::Side* s : it.sides()) {
-      s->ds = s->ds_saved;
-      s->dz = s->dz_saved;
-      s->rc = s->rc_saved;
-    }
-    break;
+    amax = corrected;
+    ++info.centrality_correctors;
   }
   return amax;
 }
