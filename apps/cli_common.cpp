@@ -43,9 +43,16 @@ void require_option(bool ok, const std::string& option, const std::string& requi
   if (!ok) throw InputError(option + ": " + requirement);
 }
 
+void require_threads(int threads) {
+  require_option(threads >= 0 && threads <= kMaxThreads, "--threads",
+                 "must be in [0, " + std::to_string(kMaxThreads) + "] (0: OpenMP default), got " + std::to_string(threads));
+}
+
 learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, std::uint64_t seed,
                                           const std::string& optimizer, double learning_rate, double momentum,
                                           bool json, const std::string& log_csv, const LearnStopOptions& stop) {
+  require_threads(threads);
+  require_writable_file("--log", log_csv);
   learn::TrainSettings t;
   t.epochs = epochs;
   t.batch = batch;

@@ -91,6 +91,18 @@ void write_json_file(const std::string& path, const Json& object);
 /// Throws InputError("<option>: <requirement>") unless ok.
 void require_option(bool ok, const std::string& option, const std::string& requirement);
 
+/// Most threads any --threads accepts (more crashed OpenMP: 100,000 threads segfaulted, 20,000
+/// took 2 GB and 29 s for 20 samples). Larger values are an input error (exit 2).
+constexpr int kMaxThreads = 1024;
+/// Throws InputError("--threads: must be in [0, 1024] ...") unless 0 ≤ threads ≤ kMaxThreads.
+void require_threads(int threads);
+
+/// Output paths checked before the work starts (cli_output_paths.cpp): throw InputError
+/// "<option>: cannot write '<path>': <reason>" unless the file can be written (created, then
+/// removed again, when missing) or the directory exists or can be created and is writable.
+void require_writable_file(const std::string& option, const std::string& path);
+void require_writable_directory(const std::string& option, const std::string& dir);
+
 /// Wall-clock stopwatch started at construction.
 class Stopwatch {
  public:

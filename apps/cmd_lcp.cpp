@@ -1,11 +1,12 @@
 // `lcprelax lcp FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` and
 // `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` (docs/cli.md):
 // Siconos numerics problems, errors as Siconos defines them (io/siconos_errors.hpp).
-// lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds; OUT: z, w.
+// lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds, and message when
+// not solved; OUT: z, w, written only when solved (else a line on stderr says so).
 // fc2d JSON: status, contacts, error, seconds (lemke: pivots, crash_sweeps, crash_pivots,
 // start = guess | crash | cold); OUT: r, u (u = W r + q). fc2d is solved as the LCP of
 // lcp/fc2d_lcp.hpp; with --solver ipm that LCP must be monotone, which it generally is not:
-// the status then reports the failure. Lemke starts by default from the basis suggested by
+// then bad input (exit 2) saying so. Lemke starts by default from the basis suggested by
 // projected Gauss–Seidel sweeps (--crash pgs, lcp/fc2d_pgs.hpp; crash start of lemke.hpp).
 #include "cli_common.hpp"
 
@@ -39,16 +40,24 @@ LcpResult solve(const SparseMatrix& M, const Vector& q, const std::string& solve
   return lemke.solve();
 }
 
-void report(const LcpOptions& o, Json j, const LcpResult& r) {
+void report(const LcpOptions& o, const Json& j) {
   if (o.json) {
     print_json(j);
     return;
   }
   for (const auto& [key, value] : j.items()) std::cout << key << ": " << value.dump() << '\n';
-  if (r.info.status != LcpStatus::solved) std::cout << "message: " << r.info.message << '\n';
+}
+
+// --solution OUT is written only for a solved problem (a failed solve's z, r can be huge and
+// meaningless: fc2d wrote r = [4e7, 0]); otherwise stderr says it was not written.
+void write_solution(const LcpOptions& o, bool solved, const Json& solution) {
+  if (o.solution.empty()) return;
+  if (solved) write_json_file(o.solution, solution);
+  else std::cerr << "lcprelax: not solved: --solution " << o.solution << " not written\n";
 }
 
 int run_lcp(const LcpOptions& o) {
+  require_writable_file("--solution", o.solution);
   const io::LcpData d = io::read_siconos_lcp(o.file);
   const Stopwatch watch;
   const LcpResult r = solve(d.M, d.q, o.solver);
@@ -60,14 +69,16 @@ int run_lcp(const LcpOptions& o) {
   j["error"] = ok ? number_or_null(io::lcp_error(d.M, d.q, r.z)) : Json(nullptr);
   j[o.solver == "ipm" ? "iterations" : "pivots"] = r.info.pivots;
   j["seconds"] = seconds;
-  if (!o.solution.empty()) write_json_file(o.solution, Json{{"z", array_or_nulls(r.z)}, {"w", array_or_nulls(r.w)}});
-  report(o, j, r);
+  if (!ok) j["message"] = r.info.message;
+  write_solution(o, ok, Json{{"z", array_or_nulls(r.z)}, {"w", array_or_nulls(r.w)}});
+  report(o, j);
   return ok ? kExitSuccess : kExitSolveFailed;
 }
 
 int run_fc2d(const LcpOptions& o) {
   require_option(o.crash == "pgs" || o.crash == "none", "--crash", "must be pgs or none");
   require_option(o.crash_sweeps >= 1 && o.crash_sweeps <= 100000, "--crash-sweeps", "must be in [1, 100000]");
+  require_writable_file("--solution", o.solution);
   const io::Fc2dData d = io::read_siconos_fc2d(o.file);
   const Stopwatch watch;
   const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
@@ -77,7 +88,13 @@ int run_fc2d(const LcpOptions& o) {
     // Crash start (lemke.hpp): Lemke from the basis that PGS sweeps suggest (fc2d_pgs.hpp).
     r = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, o.crash_sweeps, LemkeSettings{}, &sweeps);
   } else {
-    r = solve(lcp.M, lcp.q, o.solver);
+    try {
+      r = solve(lcp.M, lcp.q, o.solver);
+    } catch (const InputError& e) {  // ipm on the (generally non-monotone) LCP of the fc2d problem
+      throw InputError(std::string("--solver ") + o.solver + ": " + e.what() +
+                       " (the LCP of a 2-D frictional contact problem, lcp/fc2d_lcp.hpp, is generally not "
+                       "monotone: use --solver lemke)");
+    }
   }
   Vector reactions, velocities;
   const bool ok = r.info.status == LcpStatus::solved;
@@ -98,9 +115,9 @@ int run_fc2d(const LcpOptions& o) {
                  : r.info.crash_started && r.info.crash_pivots == r.info.pivots ? "crash"
                                                                                 : "cold";
   }
-  if (!o.solution.empty())
-    write_json_file(o.solution, Json{{"r", array_or_nulls(reactions)}, {"u", array_or_nulls(velocities)}});
-  report(o, j, r);
+  if (!ok) j["message"] = r.info.message;
+  write_solution(o, ok, Json{{"r", array_or_nulls(reactions)}, {"u", array_or_nulls(velocities)}});
+  report(o, j);
   return ok ? kExitSuccess : kExitSolveFailed;
 }
 

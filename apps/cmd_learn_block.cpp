@@ -3,11 +3,11 @@
 //  [--slip-max X] [--data FILE.csv] [--mg X] [--mass X] [--learn-mass] [--learn-mg]
 //  [--optimizer sgd|adam] [--lr α] [--momentum β] [--soft-nonnegativity] [--soft-lambdas]
 //  [--l1-softness] [--max-dissipation none|qp|ext] [--a1 … --a5] [--regularization ε]
-//  [--log FILE.csv]
+//  [--log FILE.csv] [--checkpoint FILE] [--resume FILE]
 //  [--landscape OUT] [--json]` (docs/cli.md): learns the friction coefficient of the seeds'
 // 1-D block (Parmar, Halm & Posa, IROS 2021) from transitions (v, u, v_next), generated
 // from --true-mu (noise σ relative to the RMS of v_next, learn/block_dataset.hpp) or read
-// from --data.
+// from --data. --checkpoint/--resume: a run that survives a kill (cmd_learn_checkpoint.hpp).
 // JSON: method, true, initial, learned (parameter name → value; true is null for a --data
 // file without --true-mu), final_loss (mean loss over all samples at the learned θ),
 // epochs (run: --epochs is a cap, the run ends earlier once the convergence test of
@@ -19,6 +19,7 @@
 // the CSV, with a message).
 // Exit 0 success, 1 when a sample's solve failed, 2 on bad input.
 #include "cli_common.hpp"
+#include "cmd_learn_checkpoint.hpp"
 
 #include <lcprelax/mpi/mpi_session.hpp>
 
@@ -33,6 +34,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <utility>
 
 namespace lcprelax::cli {
 namespace {
@@ -62,6 +64,7 @@ struct LearnBlockOptions {
   double regularization = 1e-3;
   std::string log, landscape;
   bool json = false;
+  LearnCheckpointOptions checkpoint;
 };
 
 Json parameter_object(const learn::ParameterSet& theta) {
@@ -71,15 +74,23 @@ Json parameter_object(const learn::ParameterSet& theta) {
   return j;
 }
 
-void run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, const learn::BlockLossSettings& s,
-                   double true_mu) {
+// Most generated samples (--samples): 10⁸ reached 5.1 GB and then bad_alloc; 10⁷ take
+// about 0.5 GB.
+constexpr int kMaxBlockSamples = 10'000'000;
+
+// --landscape OUT → the CSV and picture paths it writes (see the header comment).
+std::pair<std::string, std::string> landscape_paths(const std::string& landscape) {
   namespace fs = std::filesystem;
-  fs::path out(o.landscape);
-  std::string ext = out.extension().string();
+  std::string ext = fs::path(landscape).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const bool has_ext = ext == ".png" || ext == ".svg";
-  const std::string picture = has_ext ? o.landscape : o.landscape + ".png";
-  const std::string csv = has_ext ? fs::path(o.landscape).replace_extension(".csv").string() : o.landscape + ".csv";
+  return {has_ext ? fs::path(landscape).replace_extension(".csv").string() : landscape + ".csv",
+          has_ext ? landscape : landscape + ".png"};
+}
+
+void run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, const learn::BlockLossSettings& s,
+                   double true_mu) {
+  const auto [csv, picture] = landscape_paths(o.landscape);
   const double ref = std::isfinite(true_mu) ? true_mu : o.init_mu;
   const learn::BlockLandscape L = learn::block_landscape(
       data, s, {learn::BlockMethod::hard, learn::BlockMethod::relaxed, learn::BlockMethod::convex}, 0.05 * ref,
@@ -97,18 +108,28 @@ void run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, 
   }
 }
 
-int run_learn_block(const LearnBlockOptions& o) {
+int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
   const learn::BlockMethod method = learn::parse_block_method(o.method);
   require_option(std::isfinite(o.init_mu) && o.init_mu > 0.0, "--init-mu", "must be positive and finite");
   require_option(std::isnan(o.true_mu) || (std::isfinite(o.true_mu) && o.true_mu > 0.0), "--true-mu",
                  "must be positive and finite");
   require_option(o.epochs >= 0, "--epochs", "must be ≥ 0");
   require_option(o.batch >= 0, "--batch", "must be ≥ 0 (0: all samples)");
-  require_option(o.threads >= 0, "--threads", "must be ≥ 0 (0: OpenMP default)");
-  require_option(o.samples >= 1, "--samples", "must be ≥ 1");
+  require_threads(o.threads);
+  require_option(o.samples >= 1 && o.samples <= kMaxBlockSamples, "--samples",
+                 "must be in [1, " + std::to_string(kMaxBlockSamples) + "] (the limit: ~50 bytes per sample and epoch)");
   require_option(std::isfinite(o.noise) && o.noise >= 0.0, "--noise", "must be finite and ≥ 0");
   require_option(std::isfinite(o.mg) && o.mg > 0.0, "--mg", "must be positive and finite");
   require_option(std::isfinite(o.mass) && o.mass > 0.0, "--mass", "must be positive and finite");
+  if (!o.landscape.empty()) {  // checked before the training, not after it
+    const auto [csv, picture] = landscape_paths(o.landscape);
+    require_writable_file("--landscape", csv);
+    if (line_plot_available()) require_writable_file("--landscape", picture);
+  }
+
+  learn::TrainSettings t =
+      learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr, o.momentum, o.json, o.log, o.stop);
+  apply_learn_checkpoint_options(app, o.checkpoint, t);  // before any work
 
   learn::BlockLossSettings s;
   s.relaxed.soft_nonnegativity = o.soft_nonnegativity;
@@ -141,9 +162,6 @@ int run_learn_block(const LearnBlockOptions& o) {
   std::unique_ptr<learn::BlockObjective> objective = learn::make_block_objective(method, data, s);
   learn::ParameterSet theta = learn::block_parameters(o.init_mu, o.mass, o.mg, o.learn_mass, o.learn_mg);
   const learn::ParameterSet initial = theta;
-
-  const learn::TrainSettings t =
-      learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr, o.momentum, o.json, o.log, o.stop);
 
   std::vector<Index> all(static_cast<std::size_t>(data.size()));
   for (Index i = 0; i < data.size(); ++i) all[static_cast<std::size_t>(i)] = i;
@@ -221,8 +239,9 @@ Command add_learn_block_command(CLI::App& learn) {
       ->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");
   app->add_option("--landscape", o->landscape, "write OUT.csv and plots of every method's loss over μ");
+  add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);
-  return Command{app, [o]() { return run_learn_block(*o); }};
+  return Command{app, [o, app]() { return run_learn_block(*o, *app); }};
 }
 
 const bool registered = register_learn_application(&add_learn_block_command);

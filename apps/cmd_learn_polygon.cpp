@@ -6,7 +6,7 @@
 //       [--grad-tol G] [--patience P] [--batch B]
 //       [--threads T] [--samples S] [--seed K] [--noise σ] [--data-model lcp|convex] [--perturb F]
 //       [--learn mu,mass,inertia,vertices,ground] [--optimizer sgd|adam] [--lr α]
-//       [--lr-decay d] [--log FILE.csv] [--plot OUT.png|OUT.svg] [--json]
+//       [--lr-decay d] [--log FILE.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE] [--resume FILE] [--json]
 //
 // Ground truth: the quadrilateral with vertices (−0.30, −0.22), (0.34, −0.18), (0.26, 0.24),
 // (−0.22, 0.20) m recentred on its centroid, μ = 0.4, mass 1.5 kg, inertia 0.06 kg·m², on the
@@ -39,6 +39,7 @@
 // scenes/line_plot.hpp (needs Cairo). Exit 0; 1 when more than 5% of the samples fail to
 // solve at the learned θ; 2 on bad input.
 #include "cli_common.hpp"
+#include "cmd_learn_checkpoint.hpp"
 
 #include <lcprelax/mpi/mpi_session.hpp>
 
@@ -73,6 +74,7 @@ struct LearnPolygonOptions {
   double lr_decay = 0.003;
   std::string log, plot;
   bool json = false;
+  LearnCheckpointOptions checkpoint;
 };
 
 Json values(const learn::ParameterSet& theta, bool learned_only) {
@@ -115,13 +117,13 @@ void write_plots(const std::string& path, const learn::TrainResult& r, const lea
 #endif
 }
 
-int run_learn_polygon(const LearnPolygonOptions& o) {
+int run_learn_polygon(const LearnPolygonOptions& o, const CLI::App& app) {
   learn::PolygonLossSettings ls;
   ls.method = learn::parse_polygon_method(o.method);
   const learn::PolygonLearnFlags flags = learn::parse_polygon_learn_flags(o.learn);
   require_option(o.epochs >= 0, "--epochs", "must be >= 0");
   require_option(o.batch >= 0, "--batch", "must be >= 0 (0: all training samples)");
-  require_option(o.threads >= 0, "--threads", "must be >= 0 (0: OpenMP default)");
+  require_threads(o.threads);
   require_option(o.samples >= 2 && o.samples <= 100000, "--samples", "must be in [2, 100000]");
   require_option(std::isfinite(o.noise) && o.noise >= 0, "--noise", "must be finite and >= 0");
   require_option(std::isfinite(o.perturb) && o.perturb >= 0 && o.perturb < 1, "--perturb", "must be in [0, 1)");
@@ -130,10 +132,16 @@ int run_learn_polygon(const LearnPolygonOptions& o) {
     std::string ext = std::filesystem::path(o.plot).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     require_option(ext == ".png" || ext == ".svg", "--plot", "must end in .png or .svg");
+    require_option(line_plot_available(), "--plot", "lcprelax was built without Cairo");
+    std::filesystem::path time_path(o.plot);  // write_plots' second picture
+    time_path.replace_filename(time_path.stem().string() + "-time" + time_path.extension().string());
+    require_writable_file("--plot", o.plot);  // before the training, not after it
+    require_writable_file("--plot", time_path.string());
   }
   learn::TrainSettings t = learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr,
                                                 learn::OptimizerSettings{}.momentum, o.json, o.log, o.stop);
   t.optimizer.decay = o.lr_decay;
+  apply_learn_checkpoint_options(app, o.checkpoint, t);
 
   const learn::PolygonModel truth = learn::reference_polygon_model();
   learn::PolygonDataSettings ds;
@@ -214,8 +222,9 @@ Command add_learn_polygon_command(CLI::App& learn) {
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");
   app->add_option("--plot", o->plot, "relative errors against epoch and wall time (OUT.png|svg, OUT-time.*)");
+  add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);
-  return Command{app, [o]() { return run_learn_polygon(*o); }};
+  return Command{app, [o, app]() { return run_learn_polygon(*o, *app); }};
 }
 
 const bool registered = register_learn_application(&add_learn_polygon_command);

@@ -5,7 +5,8 @@
 //       [--classes C] [--method hard|relaxed|convex] [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F] [--optimizer sgd|adam] [--lr α] [--lr-decay d]
-//       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--json]
+//       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE]
+//       [--resume FILE] [--json]
 //
 // Scene: --scene FILE.json (scenes/scene_json.hpp), or --bodies N: the learning pile of N
 // polygons of C shape classes dropped into a box (learn/scene_dataset.hpp
@@ -22,6 +23,7 @@
 // trainer's CSV; --plot each learned parameter's relative error against wall time.
 // Exit 0; 1 when more than 5% of the transitions fail at the learned θ; 2 on bad input.
 #include "cli_common.hpp"
+#include "cmd_learn_checkpoint.hpp"
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
@@ -60,6 +62,7 @@ struct LearnSceneOptions {
   double beta2 = learn::OptimizerSettings{}.beta2;
   std::string log, plot;
   bool json = false;
+  LearnCheckpointOptions checkpoint;
 };
 
 Json values(const learn::ParameterSet& theta) {
@@ -95,7 +98,7 @@ void write_plot(const std::string& path, const learn::TrainResult& r, const lear
 #endif
 }
 
-int run_learn_scene(const LearnSceneOptions& o) {
+int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   learn::SceneLossSettings ls;
   ls.method = learn::parse_loss_method(o.method);
   require_option(o.proximal_iterations >= 1 && o.proximal_iterations <= 1000, "--proximal-iterations", "must be in [1, 1000]");
@@ -111,7 +114,7 @@ int run_learn_scene(const LearnSceneOptions& o) {
   require_option(o.steps >= 1 && o.steps <= 1000000, "--steps", "must be in [1, 1000000]");
   require_option(o.epochs >= 0, "--epochs", "must be >= 0");
   require_option(o.batch >= 0, "--batch", "must be >= 0 (0: all training transitions)");
-  require_option(o.threads >= 0 && o.threads <= 1024, "--threads", "must be in [0, 1024] (0: OpenMP default)");
+  require_threads(o.threads);
   require_option(std::isfinite(o.noise) && o.noise >= 0, "--noise", "must be finite and >= 0");
   require_option(std::isfinite(o.perturb) && o.perturb >= 0 && o.perturb < 1, "--perturb", "must be in [0, 1)");
   require_option(std::isfinite(o.lr_decay) && o.lr_decay >= 0, "--lr-decay", "must be finite and >= 0");
@@ -119,11 +122,14 @@ int run_learn_scene(const LearnSceneOptions& o) {
     std::string ext = std::filesystem::path(o.plot).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     require_option(ext == ".png" || ext == ".svg", "--plot", "must end in .png or .svg");
+    require_option(line_plot_available(), "--plot", "lcprelax was built without Cairo");
+    require_writable_file("--plot", o.plot);  // before the training, not after it
   }
   learn::TrainSettings t = learn_train_settings(o.epochs, o.batch, o.threads, o.seed, o.optimizer, o.lr,
                                                 learn::OptimizerSettings{}.momentum, o.json, o.log, o.stop);
   t.optimizer.decay = o.lr_decay;
   t.optimizer.beta2 = o.beta2;
+  apply_learn_checkpoint_options(app, o.checkpoint, t);
 
   learn::SceneDataset data;
   if (!o.data.empty()) {
@@ -241,8 +247,9 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");
   app->add_option("--plot", o->plot, "relative error of each parameter against wall time (OUT.png|svg)");
+  add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);
-  return Command{app, [o]() { return run_learn_scene(*o); }};
+  return Command{app, [o, app]() { return run_learn_scene(*o, *app); }};
 }
 
 const bool registered = register_learn_application(&add_learn_scene_command);

@@ -6,7 +6,9 @@
 // (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
 // potential energy divided by the initial total), plus model, failed_islands, seconds.
 // Exit status 1 when any island's contact solve failed (it was then solved by the convex
-// fallback, see simulator.cpp), 2 on bad input.
+// fallback, see simulator.cpp), 2 on bad input. --scene FILE: the file's "model" and "steps"
+// hold unless --model / --steps name them. Output paths are checked before the first step;
+// progress goes to stderr (a status line on a terminal, else a line every 10 s).
 #include "cli_common.hpp"
 
 #include <lcprelax/contact/collision.hpp>
@@ -21,7 +23,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -47,31 +51,67 @@ PictureOptions picture_options(const PileCliOptions& o) {
   return p;
 }
 
-int run_pile(const PileCliOptions& o) {
+// Output paths are checked before the simulation (a long run must not end in "cannot write").
+void check_outputs(const PileCliOptions& o) {
+  if (!o.picture.empty()) {
+    std::string ext = std::filesystem::path(o.picture).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    require_option(ext == ".png" || ext == ".svg", "--picture", "must end in .png or .svg");
+    require_writable_file("--picture", o.picture);
+  }
+  require_writable_directory("--frames", o.frames);
+  require_writable_file("--export-fc2d", o.export_fc2d);
+}
+
+// Progress on stderr every kProgressSeconds whatever the terminal (a long run, such as a
+// 10⁶-body scene, says how far it is; also under --json: stdout keeps its one object).
+constexpr double kProgressSeconds = 10.0;
+
+int run_pile(const PileCliOptions& o, const CLI::App& app) {
+  const Stopwatch setup_watch;
+  check_outputs(o);
   Scene scene;
   if (!o.scene.empty()) {
+    // The scene file's "model" and "steps" hold unless a flag names them.
+    require_option(app.count("--bodies") == 0, "--bodies", "cannot be combined with --scene (the scene has its bodies)");
+    require_option(app.count("--seed") == 0, "--seed", "cannot be combined with --scene (the scene is not random)");
     scene = load_scene(o.scene);
+    if (app.count("--model")) scene.settings.model = parse_contact_model(o.model);
+    if (app.count("--steps")) scene.steps = o.steps;
   } else {
     PileOptions p;
     p.bodies = o.bodies;
     p.seed = o.seed;
     scene = make_pile_scene(p);
+    scene.settings.model = parse_contact_model(o.model);
+    scene.steps = o.steps;
   }
-  scene.settings.model = parse_contact_model(o.model);
-  scene.steps = o.steps;
+  const int steps = scene.steps;
+  const std::string model = to_string(scene.settings.model);
   SimulatorSettings settings;
   settings.threads = o.threads;
-  Simulator sim = make_simulator(std::move(scene), settings);
+  Simulator sim = [&] {
+    try {
+      return make_simulator(std::move(scene), settings);
+    } catch (const InputError& e) {  // a scene file's value the simulator refuses: name the file
+      if (o.scene.empty()) throw;
+      throw InputError(o.scene + ": " + e.what());
+    }
+  }();
 
   const bool progress = !o.json && isatty(STDERR_FILENO);
+  double next_report = kProgressSeconds;
+  if (setup_watch.seconds() > kProgressSeconds)  // 10⁶ bodies: about 20 s before the first step
+    std::fprintf(stderr, "lcprelax pile: %zu bodies set up in %.0f s, %d steps to go\n", sim.world().bodies.size(),
+                 setup_watch.seconds(), steps);
   const double e0 = sim.total_energy();
   double energy = e0, max_gain = -std::numeric_limits<double>::infinity(), max_pen = 0.0, max_res = 0.0;
   int contacts_max = 0;
   long failed = 0, inaccurate = 0;
   std::string first_failure;
   const Stopwatch watch;
-  for (int k = 0; k < o.steps; ++k) {
-    if (!o.export_fc2d.empty() && k + 1 == o.steps) {
+  for (int k = 0; k < steps; ++k) {
+    if (!o.export_fc2d.empty() && k + 1 == steps) {
       // the last step's contact problem, before it is solved
       const std::vector<Contact> c = find_contacts(sim.world(), CollisionSettings{sim.settings().margin});
       const io::Fc2dData d = export_fc2d(sim.world(), c, sim.settings().dt);
@@ -89,10 +129,14 @@ int run_pile(const PileCliOptions& o) {
     inaccurate += st.inaccurate_islands;
     if (!o.frames.empty() && k % o.frame_every == 0)
       write_frame(o.frames, k / o.frame_every, sim.world(), sim.contacts(), picture_options(o));
-    if (progress && (k % 10 == 0 || k + 1 == o.steps)) {
-      const double s = watch.seconds();
-      std::fprintf(stderr, "\rstep %d/%d  contacts %d  islands %d  %.3f s/step  ETA %.0f s   ", k + 1, o.steps,
-                   st.contacts, st.islands, s / (k + 1), s / (k + 1) * (o.steps - k - 1));
+    const double s = watch.seconds();
+    if (progress && (k % 10 == 0 || k + 1 == steps)) {
+      std::fprintf(stderr, "\rstep %d/%d  contacts %d  islands %d  %.3f s/step  ETA %.0f s   ", k + 1, steps,
+                   st.contacts, st.islands, s / (k + 1), s / (k + 1) * (steps - k - 1));
+    } else if (!progress && s >= next_report && k + 1 < steps) {
+      std::fprintf(stderr, "lcprelax pile: step %d/%d, contacts %d, islands %d, %.3g s/step, ETA %.0f s\n", k + 1,
+                   steps, st.contacts, st.islands, s / (k + 1), s / (k + 1) * (steps - k - 1));
+      next_report = s + kProgressSeconds;
     }
   }
   if (progress) std::fprintf(stderr, "\n");
@@ -102,12 +146,12 @@ int run_pile(const PileCliOptions& o) {
   Json j;
   j["bodies"] = sim.world().bodies.size();
   j["contacts_max"] = contacts_max;
-  j["steps"] = o.steps;
-  j["seconds_per_step"] = o.steps > 0 ? seconds / o.steps : 0.0;
+  j["steps"] = steps;
+  j["seconds_per_step"] = steps > 0 ? seconds / steps : 0.0;
   j["max_penetration"] = max_pen;
   j["max_residual"] = max_res;
-  j["max_energy_gain"] = o.steps > 0 ? number_or_null(max_gain) : Json(0.0);
-  j["model"] = o.model;
+  j["max_energy_gain"] = steps > 0 ? number_or_null(max_gain) : Json(0.0);
+  j["model"] = model;
   j["failed_islands"] = failed;
   j["inaccurate_islands"] = inaccurate;
   j["seconds"] = seconds;
@@ -143,7 +187,7 @@ Command add_pile_command(CLI::App& parent) {
   app->add_flag("--draw-contacts", o->draw_contacts, "Draw contact points and normals");
   app->add_option("--export-fc2d", o->export_fc2d, "Write the last step's contact problem as a Siconos fc2d file");
   add_json_flag(*app, o->json);
-  return Command{app, [o] { return run_pile(*o); }};
+  return Command{app, [o, app] { return run_pile(*o, *app); }};
 }
 
 }  // namespace lcprelax::cli

@@ -1,9 +1,11 @@
 // `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--time-limit S] [--verbose] [--solution OUT.json] [--json]`
 // (docs/cli.md): reads a QPS file, solves it with the interior-point QP and reports status,
-// objective, iterations, residuals, duality gap and the setup + solve wall time. With
-// --solution, OUT.json holds `x`, `y_rows` (one multiplier per constraint row of the file,
-// QpResult::z, since the reader puts every row in G) and `y_bounds` (QpResult::z_bounds),
-// signed as in docs/conventions.md (Px + q + Cᵀy_rows + y_bounds = 0).
+// objective, iterations, residuals, duality gap, the setup + solve wall time and, unless
+// solved, the solver's message. A P that is not positive semidefinite is bad input (exit 2).
+// With --solution (only with a solution: solved or solved_inaccurate), OUT.json holds `x`,
+// `y_rows` (one multiplier per constraint row of the file, QpResult::z, since the reader
+// puts every row in G) and `y_bounds` (QpResult::z_bounds), signed as in
+// docs/conventions.md (Px + q + Cᵀy_rows + y_bounds = 0).
 #include "cli_common.hpp"
 
 #include <lcprelax/io/qps_reader.hpp>
@@ -58,6 +60,7 @@ Json report_json(const QpInfo& info, double seconds) {
   j["dual_residual"] = number_or_null(info.dual_residual);
   j["duality_gap"] = number_or_null(info.duality_gap);
   j["seconds"] = number_or_null(seconds);
+  if (info.status != QpStatus::solved) j["message"] = info.message;
   return j;
 }
 
@@ -86,15 +89,20 @@ void print_report(const io::QpsModel& model, const QpInfo& info, double seconds)
 
 int run_qp(const QpOptions& o) {
   const QpSettings settings = settings_from(o);
+  require_writable_file("--solution", o.solution);
   const io::QpsModel model = io::read_qps(o.file);
 
   QpSolver solver(settings);
   const Stopwatch watch;
-  solver.setup(model.problem);  // rejects invalid data (NaN, crossed bounds) with InputError
+  solver.setup(model.problem);  // rejects invalid data (NaN, crossed bounds, nonconvex P) with InputError
   const QpResult& result = solver.solve();
   const double seconds = watch.seconds();
 
-  if (!o.solution.empty()) write_json_file(o.solution, solution_json(result));
+  // Written only with a usable solution (solved or solved_inaccurate), never a failed iterate.
+  if (!o.solution.empty()) {
+    if (has_solution(result.info.status)) write_json_file(o.solution, solution_json(result));
+    else std::cerr << "lcprelax qp: " << to_string(result.info.status) << ": --solution " << o.solution << " not written\n";
+  }
   if (o.json) {
     print_json(report_json(result.info, seconds));
   } else {

@@ -1,6 +1,8 @@
 // lcprelax command line (docs/cli.md). Each subcommand registers itself through an
 // add_<name>_command() declared in cli_common.hpp; main() parses, runs the selected one and
-// maps failures to exit codes: 0 solved, 1 solve failed, 2 bad input (message on stderr).
+// maps failures to exit codes: 0 solved, 1 solve failed, 2 bad input (message on stderr; with
+// --json also {"status": "invalid_input", "message": ...} on stdout). An unknown subcommand is
+// named, with the valid ones.
 #include "cli_common.hpp"
 
 #include <lcprelax/core/errors.hpp>
@@ -11,9 +13,49 @@
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <new>
+#include <string>
 #include <vector>
 
 namespace {
+
+// The first word of argv that names no subcommand where one is expected ("lcprelax foo",
+// "lcprelax learn foo"), with the valid names; empty when there is none. CLI11 would say
+// "A subcommand is required" or "arguments were not expected".
+std::string unknown_subcommand(CLI::App& app, int argc, char** argv) {
+  CLI::App* at = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const std::vector<CLI::App*> subs = at->get_subcommands([](CLI::App*) { return true; });
+    if (subs.empty() || arg.empty() || arg[0] == '-') return {};
+    CLI::App* next = nullptr;
+    for (CLI::App* s : subs)
+      if (s->check_name(arg)) next = s;
+    if (next == nullptr) {
+      std::string names;
+      for (CLI::App* s : subs) names += (names.empty() ? "" : ", ") + s->get_name();
+      const std::string where = at == &app ? std::string("lcprelax") : "lcprelax " + at->get_name();
+      return where + ": unknown subcommand '" + arg.substr(0, 64) + "' (valid: " + names + ")";
+    }
+    at = next;
+  }
+  return {};
+}
+
+// Whether --json was asked for anywhere on the command line.
+bool wants_json(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--json") return true;
+  return false;
+}
+
+// A failure: the message on stderr, and with --json also {"status", "message"} on stdout
+// (docs/cli.md: --json always prints exactly one object).
+int fail(bool json, const char* status, const std::string& message, int code) {
+  std::cerr << message << '\n';
+  if (json) lcprelax::cli::print_json({{"status", status}, {"message", message}});
+  return code;
+}
 
 // Whether this process was started by mpiexec/mpirun (Open MPI, MPICH/PMI, PMIx).
 bool launched_by_mpiexec() {
@@ -43,25 +85,29 @@ int main(int argc, char** argv) {
       add_learn_command(app),
   };
 
+  const bool json = wants_json(argc, argv);
+  if (const std::string unknown = unknown_subcommand(app, argc, argv); !unknown.empty())
+    return fail(json, "invalid_input", unknown, kExitBadInput);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);  // prints help (stdout) or the error (stderr)
-    return code == 0 ? kExitSuccess : kExitBadInput;
+    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? kExitSuccess : kExitBadInput;  // --help
+    if (!json) return app.exit(e) == 0 ? kExitSuccess : kExitBadInput;  // the error and a hint (stderr)
+    return fail(json, "invalid_input", std::string("lcprelax: ") + e.what(), kExitBadInput);
   }
 
   for (const Command& command : commands) {
     if (!command.app->parsed()) continue;
+    const std::string name = "lcprelax " + command.app->get_name() + ": ";
     try {
       return command.run();
     } catch (const lcprelax::InputError& e) {
-      std::cerr << "lcprelax " << command.app->get_name() << ": " << e.what() << '\n';
-      return kExitBadInput;
+      return fail(json, "invalid_input", name + e.what(), kExitBadInput);
+    } catch (const std::bad_alloc&) {
+      return fail(json, "out_of_memory", name + "out of memory", kExitSolveFailed);
     } catch (const std::exception& e) {
-      std::cerr << "lcprelax " << command.app->get_name() << ": internal error: " << e.what() << '\n';
-      return kExitSolveFailed;
+      return fail(json, "internal_error", name + "internal error: " + e.what(), kExitSolveFailed);
     }
   }
-  std::cerr << "lcprelax: no subcommand given\n";
-  return kExitBadInput;
+  return fail(json, "invalid_input", "lcprelax: no subcommand given", kExitBadInput);
 }

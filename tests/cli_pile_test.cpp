@@ -1,5 +1,5 @@
 // `lcprelax pile` (docs/cli.md): the JSON contract on a small pile with both contact models,
-// a picture file, the fc2d export, a scene file, and bad input (exit 2, nothing on stdout).
+// a picture file, the fc2d export, a scene file, and bad input (exit 2, only the invalid_input object on stdout).
 #include "cli_support.hpp"
 
 #include <lcprelax/io/siconos_reader.hpp>
@@ -62,7 +62,7 @@ TEST(CliPileBadInput, ExitTwoWithAMessage) {
                                  "pile --steps 5 --picture /tmp/x.bmp"}) {
     const CliRun r = run_cli(args + " --json");
     EXPECT_EQ(r.exit_code, 2) << args;
-    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_TRUE(invalid_input_json(r.out)) << args << ": " << r.out;
     EXPECT_FALSE(r.err.empty()) << args;
   }
 }

@@ -1,8 +1,11 @@
 #pragma once
 // Runs the built `lcprelax` executable for the CLI tests: stdout captured by popen, stderr
-// by a temporary file, and the exit code (docs/cli.md: 0 solved, 1 solve failed, 2 bad input).
+// by a temporary file, and the exit code (docs/cli.md: 0 solved, 1 solve failed, 2 bad input;
+// with --json, bad input prints {"status": "invalid_input", "message": ...}).
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -47,6 +50,13 @@ inline CliRun run_cli(const std::string& args) {
   r.err = slurp(err_file);
   fs::remove(err_file);
   return r;
+}
+
+/// Whether `out` is exactly the one JSON object of bad input under --json (docs/cli.md):
+/// status "invalid_input" and a non-empty message.
+inline bool invalid_input_json(const std::string& out) {
+  const auto j = nlohmann::json::parse(out, nullptr, /*allow_exceptions=*/false);
+  return j.is_object() && j.value("status", "") == "invalid_input" && !j.value("message", "").empty();
 }
 
 }  // namespace lcprelax::testing_support

@@ -1,6 +1,6 @@
 // LCPs through the interior-point QP (lcp/lcp_ipm.hpp): on monotone P-matrix LCPs
-// (M = BBᵀ + I + S, S skew; unique solution) it agrees with Lemke; on a non-monotone
-// LCP (M + Mᵀ indefinite) it does not claim a solution it has not found.
+// (M = BBᵀ + I + S, S skew; unique solution) it agrees with Lemke; a non-monotone LCP
+// (M + Mᵀ indefinite) is refused with InputError "M is not monotone" before any solve.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lcp_ipm.hpp>
 #include <lcprelax/lcp/lemke.hpp>
@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <string>
 
 namespace lcprelax {
 namespace {
@@ -42,17 +43,21 @@ TEST(LcpIpm, NegativeDiagonalOfTheSymmetricPartThrows) {
   EXPECT_THROW(solve_lcp_ipm(M.sparseView(), q), InputError);
 }
 
-TEST(LcpIpm, NonMonotoneIsNotReportedSolvedWithoutASolution) {
-  const DenseMatrix M = (DenseMatrix(2, 2) << 0, 1, -3, 0).finished();
-  const Vector q = (Vector(2) << -1, 2).finished();
-  const LcpResult r = solve_lcp_ipm(M.sparseView(), q);
-  if (r.info.status == LcpStatus::solved) {
-    const Vector w = M * r.z + q;
-    EXPECT_GE(r.z.minCoeff(), 0.0);
-    EXPECT_GE(w.minCoeff(), -1e-9);
-    EXPECT_LE(r.z.cwiseMin(w).cwiseAbs().maxCoeff(), 1e-9);
-  } else {
-    EXPECT_FALSE(r.info.message.empty());
+TEST(LcpIpm, NonMonotoneIsRefusedInTheLcpsTerms) {
+  // M + Mᵀ = [0 −2; −2 0] is indefinite: the QP would be nonconvex. Refused before any
+  // solve (issue 19: it used to run, and a non-monotone M with positive diagonal could end
+  // `solved` or exit 1), with a message about M, not about the QP's P.
+  for (const DenseMatrix& M : {DenseMatrix((DenseMatrix(2, 2) << 0, 1, -3, 0).finished()),
+                               DenseMatrix((DenseMatrix(2, 2) << 1, 3, 3, 1).finished())}) {
+    const Vector q = (Vector(2) << -1, 2).finished();
+    try {
+      const LcpResult r = solve_lcp_ipm(M.sparseView(), q);
+      ADD_FAILURE() << "accepted a non-monotone M; status " << to_string(r.info.status);
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("M is not monotone"), std::string::npos) << m;
+      EXPECT_EQ(m.find("QP"), std::string::npos) << m;
+    }
   }
 }
 

@@ -39,7 +39,7 @@ TEST(CliLearnBlockConvergence, BadTolerancesExitTwo) {
   for (const std::string args : {"--rel-loss-tol -1", "--grad-tol nan", "--patience -3"}) {
     const CliRun r = run_cli("learn block " + args + " --epochs 1 --samples 10 --json");
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.out;
-    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_TRUE(invalid_input_json(r.out)) << args;
     EXPECT_FALSE(r.err.empty()) << args;
   }
 }

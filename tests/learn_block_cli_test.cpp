@@ -2,7 +2,7 @@
 // final_loss, epochs, seconds), --epochs 0 with the gradient (exactly 0 for the hard loss at
 // 10× the truth, positive for the relaxed one), a short training run that moves μ towards
 // the truth, --data with a CSV file, --landscape writing the CSV (and plots with Cairo), and
-// bad input: exit 2, nothing on stdout, a message on stderr.
+// bad input: exit 2, only the invalid_input object on stdout, a message on stderr.
 #include "cli_support.hpp"
 
 #include <lcprelax/scenes/line_plot.hpp>
@@ -65,7 +65,7 @@ TEST(CliLearnBlock, BadInputExitsTwo) {
         "--a3 -5", "--optimizer lbfgs", "--data /nonexistent.csv", "--data '" + kData + "/block/nan.csv'"}) {
     const CliRun r = run_cli("learn block " + args + " --epochs 0 --json");
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.out;
-    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_TRUE(invalid_input_json(r.out)) << args;
     EXPECT_FALSE(r.err.empty()) << args;
   }
 }

@@ -4,7 +4,7 @@
 //   epochs, seconds; the CSV log has a header and one row per epoch; training lowers the
 //   loss below that at the initial values (--epochs 0);
 // - --learn selects the parameter kinds (mu,ground: 3 learned names);
-// - bad input exits 2 with a message on stderr naming the option and nothing on stdout:
+// - bad input exits 2 with a message on stderr naming the option and only the invalid_input object on stdout:
 //   unknown method, unknown --learn kind, negative epochs, a plot file that is not .png/.svg.
 // - the command a user runs first, `learn polygon --method relaxed --json` with every other
 //   option at its default (data, seed, perturbation, epochs, learning rate), learns: every
@@ -97,7 +97,7 @@ TEST(CliLearnPolygonOptions, BadInputExitsTwo) {
                                   std::string("--lr-decay -1"), std::string("--data-model soft")}) {
     const CliRun r = run_cli("learn polygon --samples 20 --json " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
-    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_TRUE(invalid_input_json(r.out)) << args;
     EXPECT_FALSE(r.err.empty()) << args;
   }
 }

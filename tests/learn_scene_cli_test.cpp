@@ -5,7 +5,7 @@
 //   header and one row per epoch; --learn selects the kinds (mu alone: one learned name);
 // - --scene FILE.json generates the data from the file's scene;
 // - bad input exits 2 with a message on stderr naming the option, file line or field, and
-//   nothing on stdout: an unknown --learn kind, an unknown method, --data without --scene,
+//   only the invalid_input object on stdout: an unknown --learn kind, an unknown method, --data without --scene,
 //   a trajectory whose frames have another number of bodies than the scene, a NaN in the
 //   trajectory, a step gap.
 #include "cli_support.hpp"
@@ -58,7 +58,7 @@ TEST(CliLearnSceneOptions, LearnSelectsKindsAndSceneFilesWork) {
 void expect_bad_input(const std::string& args, const std::string& needle) {
   const CliRun r = run_cli(args);
   EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err << r.out;
-  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_TRUE(invalid_input_json(r.out)) << r.out;
   EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err << " (expected '" << needle << "')";
 }
 

@@ -40,9 +40,19 @@ std::string polygon_validation_error(const Polygon& polygon) {
       return os.str();
     }
 
-  double size = 0.0;  // L: largest distance from the first vertex
-  for (int i = 1; i < n; ++i) size = std::max(size, (v[i] - v[0]).norm());
+  for (int i = 0; i < n; ++i)
+    if (v[i].cwiseAbs().maxCoeff() > kMaxPolygonCoordinate) {
+      os << "vertex " << i << " = (" << v[i].x() << ", " << v[i].y() << ") is outside ±" << kMaxPolygonCoordinate
+         << " m";
+      return os.str();
+    }
+  double size = 0.0;  // L: largest distance from the first vertex (hypot: no underflow)
+  for (int i = 1; i < n; ++i) size = std::max(size, std::hypot(v[i].x() - v[0].x(), v[i].y() - v[0].y()));
   if (!(size > 0.0)) return "all vertices coincide";
+  if (size < kMinPolygonSize) {
+    os << "polygon is " << size << " m across, smaller than " << kMinPolygonSize << " m";
+    return os.str();
+  }
 
   for (int i = 0; i < n; ++i) {
     const int j = (i + 1) % n;
@@ -100,6 +110,12 @@ MassProperties mass_properties(const Polygon& polygon, double density) {
   m.mass = density * m.area;
   const double polar_about_v0 = density * j_sum / 12.0;
   m.inertia = polar_about_v0 - m.mass * centroid_rel.squaredNorm();
+  if (!std::isfinite(m.mass) || !std::isfinite(m.inertia) || !(m.mass > 0.0) || !(m.inertia > 0.0)) {
+    std::ostringstream os;
+    os << "density = " << density << " gives mass " << m.mass << " and inertia " << m.inertia
+       << " (area " << m.area << " m²): outside the range of doubles";
+    throw InputError(os.str());
+  }
   return m;
 }
 

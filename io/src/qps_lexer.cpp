@@ -28,8 +28,7 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' |
 }  // namespace
 
 bool QpsLexer::next(std::vector<std::string>& fields) {
-  while (std::getline(in_, text_)) {
-    ++line_;
+  while (lines_.next(text_)) {
     fields.clear();
     std::size_t i = 0;
     while (i < text_.size()) {
@@ -42,12 +41,11 @@ bool QpsLexer::next(std::vector<std::string>& fields) {
     header_ = !is_space(text_[0]);
     return true;
   }
-  if (in_.bad()) fail("read error");
   return false;
 }
 
 void QpsLexer::fail_at(long line, const std::string& message) const {
-  throw InputError(source_ + ":" + std::to_string(line > 0 ? line : 1) + ": " + message);
+  lines_.fail_at(line, message);
 }
 
 void QpsLexer::expect_fields(const std::vector<std::string>& fields, std::size_t lo, std::size_t hi,
@@ -61,15 +59,15 @@ double QpsLexer::number(const std::string& token) const {
   const char* begin = token.c_str();
   char* end = nullptr;
   const double v = std::strtod(begin, &end);
-  if (end == begin || *end != '\0') fail("'" + token + "' is not a number");
-  if (std::isnan(v)) fail("NaN value '" + token + "'");
+  if (end == begin || *end != '\0') fail(quote(token) + " is not a number");
+  if (std::isnan(v)) fail("NaN value " + quote(token));
   // Overflow (1e999) gives ±inf, caught by finite_number() where infinity is not allowed.
   return v;
 }
 
 double QpsLexer::finite_number(const std::string& token) const {
   const double v = number(token);
-  if (!std::isfinite(v)) fail("infinite value '" + token + "'");
+  if (!std::isfinite(v)) fail("infinite value " + quote(token));
   return v;
 }
 

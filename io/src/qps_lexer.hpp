@@ -1,6 +1,10 @@
 #pragma once
 // Internal to the QPS reader: line splitting, section names, number parsing and
-// "FILE:LINE: message" errors (lcprelax::InputError). Not a public header.
+// "FILE:LINE: message" errors (lcprelax::InputError). Not a public header. Lines are read
+// through text::LineInput (core/text_input.hpp): at most 1 MiB per line, no NUL bytes, a
+// leading UTF-8 BOM skipped; tokens echoed in messages go through quote() (64 characters).
+#include <lcprelax/core/text_input.hpp>
+
 #include <istream>
 #include <string>
 #include <vector>
@@ -15,7 +19,7 @@ QpsSection section_from_name(const std::string& keyword);
 
 class QpsLexer {
  public:
-  QpsLexer(std::istream& in, std::string source) : in_(in), source_(std::move(source)) {}
+  QpsLexer(std::istream& in, std::string source) : lines_(in, std::move(source)) {}
 
   /// Reads the next line that is neither blank nor a '*' comment and splits it on
   /// whitespace into `fields`; false at end of input.
@@ -23,9 +27,9 @@ class QpsLexer {
   /// True when the current line starts in column 1 (a section header in free MPS).
   bool is_header() const { return header_; }
   /// 1-based number of the current line (the last line read at end of input).
-  long line() const { return line_; }
+  long line() const { return lines_.line(); }
 
-  [[noreturn]] void fail(const std::string& message) const { fail_at(line_, message); }
+  [[noreturn]] void fail(const std::string& message) const { fail_at(lines_.line(), message); }
   [[noreturn]] void fail_at(long line, const std::string& message) const;
   /// Fails unless lo ≤ fields.size() ≤ hi, naming `what`.
   void expect_fields(const std::vector<std::string>& fields, std::size_t lo, std::size_t hi,
@@ -36,12 +40,12 @@ class QpsLexer {
   double finite_number(const std::string& token) const;
   /// Text of a value for messages (12 significant digits).
   static std::string format(double value);
+  /// A token for messages: 'TOKEN', cut to 64 characters (text::quote).
+  static std::string quote(const std::string& token) { return text::quote(token); }
 
  private:
-  std::istream& in_;
-  std::string source_;
+  text::LineInput lines_;
   std::string text_;
-  long line_ = 0;
   bool header_ = false;
 };
 

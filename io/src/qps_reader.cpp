@@ -22,6 +22,8 @@ namespace lcprelax::io {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Columns, rows and matrix entries are counted in Index (int): at most 2^31 − 1 of each.
+constexpr std::size_t kMaxCount = static_cast<std::size_t>(std::numeric_limits<Index>::max());
 
 enum class RowKind { objective, dropped, constraint };
 struct RowRef {
@@ -34,6 +36,8 @@ struct QuadEntry {
   double value;
   long line;
 };
+
+std::string Q(const std::string& token) { return QpsLexer::quote(token); }
 
 std::uint64_t key(Index i, Index j) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) | static_cast<std::uint32_t>(j);
@@ -92,7 +96,7 @@ class QpsParser {
   /// Switches section; returns true at ENDATA.
   bool enter_section(const std::vector<std::string>& f) {
     const QpsSection s = section_from_name(f[0]);
-    if (s == QpsSection::none) lex_.fail("unknown section '" + f[0] + "'");
+    if (s == QpsSection::none) lex_.fail("unknown section " + Q(f[0]));
     const bool quadratic = s == QpsSection::quadobj || s == QpsSection::qmatrix;
     const int id = quadratic ? static_cast<int>(QpsSection::quadobj) : static_cast<int>(s);
     if (!seen_sections_.insert(id).second) lex_.fail("section " + f[0] + " appears twice");
@@ -111,7 +115,7 @@ class QpsParser {
     } else if (f[0] == "QSECTION") {
       if (f.size() > 2) lex_.fail("QSECTION line has too many fields");
       if (f.size() == 2 && (!has_objective_ || f[1] != model_.objective_name))
-        lex_.fail("QSECTION for row '" + f[1] + "': quadratic constraints are not supported");
+        lex_.fail("QSECTION for row " + Q(f[1]) + ": quadratic constraints are not supported");
     } else if (f.size() != 1) {
       lex_.fail("unexpected fields after section header " + f[0]);
     }
@@ -124,8 +128,8 @@ class QpsParser {
 
   void check_sense(const std::string& sense) {
     if (sense == "MIN" || sense == "MINIMIZE") return;
-    if (sense == "MAX" || sense == "MAXIMIZE") lex_.fail("maximization (OBJSENSE " + sense + ") is not supported");
-    lex_.fail("unknown OBJSENSE '" + sense + "'");
+    if (sense == "MAX" || sense == "MAXIMIZE") lex_.fail("maximization (OBJSENSE " + Q(sense) + ") is not supported");
+    lex_.fail("unknown OBJSENSE " + Q(sense));
   }
 
   void data_line(const std::vector<std::string>& f) {
@@ -148,14 +152,15 @@ class QpsParser {
   void row_line(const std::vector<std::string>& f) {
     lex_.expect_fields(f, 2, 2, "ROWS line (type, name)");
     const std::string& t = f[0];
-    if (t != "N" && t != "E" && t != "L" && t != "G") lex_.fail("unknown row type '" + t + "' (expected N, E, L or G)");
-    if (rows_.count(f[1])) lex_.fail("duplicate row name '" + f[1] + "'");
+    if (t != "N" && t != "E" && t != "L" && t != "G") lex_.fail("unknown row type " + Q(t) + " (expected N, E, L or G)");
+    if (rows_.count(f[1])) lex_.fail("duplicate row name " + Q(f[1]));
     RowRef ref{RowKind::constraint, -1};
     if (t == "N") {
       ref.kind = has_objective_ ? RowKind::dropped : RowKind::objective;
       if (!has_objective_) model_.objective_name = f[1];
       has_objective_ = true;
     } else {
+      if (row_type_.size() >= kMaxCount) lex_.fail("more than " + std::to_string(kMaxCount) + " constraint rows");
       ref.index = static_cast<Index>(row_type_.size());
       row_type_.push_back(t[0]);
       model_.row_names.push_back(f[1]);
@@ -165,13 +170,13 @@ class QpsParser {
 
   const RowRef& row(const std::string& name) {
     auto it = rows_.find(name);
-    if (it == rows_.end()) lex_.fail("unknown row '" + name + "'");
+    if (it == rows_.end()) lex_.fail("unknown row " + Q(name));
     return it->second;
   }
 
   Index column(const std::string& name) {
     auto it = cols_.find(name);
-    if (it == cols_.end()) lex_.fail("unknown column '" + name + "'");
+    if (it == cols_.end()) lex_.fail("unknown column " + Q(name));
     return it->second;
   }
 
@@ -180,13 +185,14 @@ class QpsParser {
       lex_.expect_fields(f, 3, 3, "MARKER line (name, 'MARKER', 'INTORG'|'INTEND')");
       if (f[2] == "'INTORG'") in_integer_block_ = true;
       else if (f[2] == "'INTEND'") in_integer_block_ = false;
-      else lex_.fail("unknown MARKER type " + f[2]);
+      else lex_.fail("unknown MARKER type " + Q(f[2]));
       return;
     }
     if (f.size() != 3 && f.size() != 5)
       lex_.fail("COLUMNS line has " + std::to_string(f.size()) + " fields, expected 3 or 5 (column, row, value[, row, value])");
     if (in_integer_block_)
-      lex_.fail("integer variable '" + f[0] + "' (inside an INTORG/INTEND MARKER block) is not supported");
+      lex_.fail("integer variable " + Q(f[0]) + " (inside an INTORG/INTEND MARKER block) is not supported");
+    if (q_.size() >= kMaxCount && !cols_.count(f[0])) lex_.fail("more than " + std::to_string(kMaxCount) + " columns");
     auto [it, inserted] = cols_.emplace(f[0], static_cast<Index>(q_.size()));
     const Index j = it->second;
     if (inserted) {
@@ -198,12 +204,13 @@ class QpsParser {
       const RowRef& ref = row(f[k]);
       const double v = lex_.finite_number(f[k + 1]);
       if (ref.kind == RowKind::objective) {
-        if (q_set_[j]) lex_.fail("duplicate objective entry for column '" + f[0] + "'");
+        if (q_set_[j]) lex_.fail("duplicate objective entry for column " + Q(f[0]));
         q_set_[j] = 1;
         q_[j] = v;
       } else if (ref.kind == RowKind::constraint) {
         if (!g_keys_.insert(key(ref.index, j)).second)
-          lex_.fail("duplicate entry for column '" + f[0] + "' in row '" + f[k] + "'");
+          lex_.fail("duplicate entry for column " + Q(f[0]) + " in row " + Q(f[k]));
+        if (g_.size() >= kMaxCount) lex_.fail("more than " + std::to_string(kMaxCount) + " constraint entries");
         if (v != 0.0) g_.emplace_back(ref.index, j, v);
       }
     }
@@ -211,7 +218,7 @@ class QpsParser {
 
   void check_set_name(std::string& stored, const std::string& name, const char* what) {
     if (stored.empty()) stored = name;
-    else if (stored != name) lex_.fail(std::string("second ") + what + " set '" + name + "' (only one set is supported, first was '" + stored + "')");
+    else if (stored != name) lex_.fail(std::string("second ") + what + " set " + Q(name) + " (only one set is supported, first was " + Q(stored) + ")");
   }
 
   /// RHS (ranges = false) or RANGES line: set, row, value[, row, value].
@@ -228,16 +235,16 @@ class QpsParser {
       const RowRef& ref = row(f[k]);
       const double v = lex_.finite_number(f[k + 1]);
       if (ref.kind != RowKind::constraint) {
-        if (ranges) lex_.fail("RANGES entry on objective (N) row '" + f[k] + "'");
+        if (ranges) lex_.fail("RANGES entry on objective (N) row " + Q(f[k]));
         if (ref.kind == RowKind::objective) {
-          if (objective_rhs_set_) lex_.fail("duplicate RHS entry for objective row '" + f[k] + "'");
+          if (objective_rhs_set_) lex_.fail("duplicate RHS entry for objective row " + Q(f[k]));
           objective_rhs_set_ = true;
           r_ = -v;  // the objective row's RHS is −r
         }
         continue;
       }
       std::vector<char>& set = ranges ? range_set_ : rhs_set_;
-      if (set[ref.index]) lex_.fail(std::string("duplicate ") + what + " entry for row '" + f[k] + "'");
+      if (set[ref.index]) lex_.fail(std::string("duplicate ") + what + " entry for row " + Q(f[k]));
       set[ref.index] = 1;
       (ranges ? range_ : rhs_)[ref.index] = v;
     }
@@ -248,9 +255,9 @@ class QpsParser {
     const std::string& t = f[0];
     const bool valueless = t == "FR" || t == "MI" || t == "PL";
     if (t == "BV" || t == "LI" || t == "UI" || t == "SC")
-      lex_.fail("integer or semi-continuous bound type " + t + " is not supported");
+      lex_.fail("integer or semi-continuous bound type " + Q(t) + " is not supported");
     if (!valueless && t != "LO" && t != "UP" && t != "FX")
-      lex_.fail("unknown bound type '" + t + "' (expected LO, UP, FX, FR, MI or PL)");
+      lex_.fail("unknown bound type " + Q(t) + " (expected LO, UP, FX, FR, MI or PL)");
     if (valueless) lex_.expect_fields(f, 3, 4, "BOUNDS " + t + " line (type, set, column[, value])");
     else lex_.expect_fields(f, 4, 4, "BOUNDS " + t + " line (type, set, column, value)");
     check_set_name(bounds_name_, f[1], "BOUNDS");
@@ -271,15 +278,15 @@ class QpsParser {
     }
     const double v = lex_.number(f[3]);
     if (t == "LO") {
-      if (v == kInf) lex_.fail("LO bound +inf on column '" + f[2] + "'");
+      if (v == kInf) lex_.fail("LO bound +inf on column " + Q(f[2]));
       xl_[j] = v;
       lower_set_[j] = 1;
     } else if (t == "UP") {
-      if (v == -kInf) lex_.fail("UP bound -inf on column '" + f[2] + "'");
+      if (v == -kInf) lex_.fail("UP bound -inf on column " + Q(f[2]));
       xu_[j] = v;
       if (v < 0.0 && !lower_set_[j]) xl_[j] = -kInf;  // classic MPS rule for a negative UP
     } else {  // FX
-      if (!std::isfinite(v)) lex_.fail("infinite FX bound on column '" + f[2] + "'");
+      if (!std::isfinite(v)) lex_.fail("infinite FX bound on column " + Q(f[2]));
       xl_[j] = xu_[j] = v;
       lower_set_[j] = 1;
     }
@@ -293,8 +300,9 @@ class QpsParser {
     // QUADOBJ holds one entry per pair, in either orientation: key on (min, max).
     const std::uint64_t k = full_quadratic_ ? key(i, j) : key(std::min(i, j), std::max(i, j));
     if (!quad_keys_.emplace(k, quad_.size()).second)
-      lex_.fail("duplicate quadratic entry (" + f[0] + ", " + f[1] + ")" +
+      lex_.fail("duplicate quadratic entry (" + Q(f[0]) + ", " + Q(f[1]) + ")" +
                 (full_quadratic_ ? "" : "; QUADOBJ lists each off-diagonal pair once"));
+    if (quad_.size() >= kMaxCount) lex_.fail("more than " + std::to_string(kMaxCount) + " quadratic entries");
     quad_.push_back({i, j, v, lex_.line()});
   }
 
@@ -305,7 +313,8 @@ class QpsParser {
     for (const QuadEntry& e : quad_) {
       if (full_quadratic_ && e.i != e.j) {
         auto it = quad_keys_.find(key(e.j, e.i));
-        const std::string pair = "(" + model_.variable_names[e.i] + ", " + model_.variable_names[e.j] + ")";
+        const std::string pair = "(" + text::truncate(model_.variable_names[e.i]) + ", " +
+                                 text::truncate(model_.variable_names[e.j]) + ")";
         if (it == quad_keys_.end())
           lex_.fail_at(e.line, "QMATRIX entry " + pair + " has no symmetric partner");
         const QuadEntry& m = quad_[it->second];
@@ -352,6 +361,8 @@ class QpsParser {
   QpsModel finish() {
     const Index n = static_cast<Index>(q_.size());
     const Index m = static_cast<Index>(row_type_.size());
+    // A problem without variables is no problem: reject it here rather than "solve" it.
+    if (n == 0) lex_.fail("no variables: the COLUMNS section lists no column");
     if (xl_.empty()) {
       xl_.assign(n, 0.0);
       xu_.assign(n, kInf);
@@ -359,7 +370,7 @@ class QpsParser {
     }
     for (Index j = 0; j < n; ++j) {
       if (xl_[j] > xu_[j])
-        lex_.fail_at(bound_line_[j], "bounds of column '" + model_.variable_names[j] + "' cross: lower " +
+        lex_.fail_at(bound_line_[j], "bounds of column " + Q(model_.variable_names[j]) + " cross: lower " +
                                          lex_.format(xl_[j]) + " > upper " + lex_.format(xu_[j]));
     }
     QpProblem& p = model_.problem;

@@ -33,13 +33,14 @@ std::vector<std::string> split_fields(const std::string& line) {
   return fields;
 }
 
-void SiconosTokenizer::fail(const std::string& message) const {
-  throw InputError(source_ + ":" + std::to_string(line_no_ > 0 ? line_no_ : 1) + ": " + message);
+void SiconosTokenizer::require_values(std::uint64_t count, const std::string& what) const {
+  if (!text::values_fit(count, input_bytes_))
+    fail(what + " needs " + std::to_string(count) + " values, more than the " + std::to_string(input_bytes_) +
+         " bytes of the file can hold (a size in the header is wrong or the file is truncated)");
 }
 
 bool SiconosTokenizer::fetch_line() {
-  if (!std::getline(in_, text_)) return false;
-  ++line_no_;
+  if (!lines_.next(text_)) return false;
   pos_ = 0;
   return true;
 }
@@ -61,10 +62,10 @@ long long SiconosTokenizer::parse_integer(const std::string& text, const std::st
   char* end = nullptr;
   const long long v = std::strtoll(text.c_str(), &end, 10);
   if (text.empty() || end != text.c_str() + text.size())
-    fail("expected an integer for " + what + ", found '" + text + "'");
+    fail("expected an integer for " + what + ", found " + text::quote(text));
   if (errno == ERANGE || v < lo || v > hi) {
-    if (lo >= 0 && (v < 0 || text[0] == '-')) fail("negative value " + text + " for " + what);
-    fail(what + " " + text + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (lo >= 0 && (v < 0 || text[0] == '-')) fail("negative value " + text::truncate(text) + " for " + what);
+    fail(what + " " + text::truncate(text) + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return v;
 }
@@ -74,9 +75,9 @@ double SiconosTokenizer::parse_real(const std::string& text, const std::string& 
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size())
-    fail("expected a number for " + what + ", found '" + text + "'");
-  if (!std::isfinite(v)) fail("non-finite value '" + text + "' for " + what);
-  if (errno == ERANGE && std::fabs(v) > 1.0) fail("value '" + text + "' for " + what + " overflows a double");
+    fail("expected a number for " + what + ", found " + text::quote(text));
+  if (!std::isfinite(v)) fail("non-finite value " + text::quote(text) + " for " + what);
+  if (errno == ERANGE && std::fabs(v) > 1.0) fail("value " + text::quote(text) + " for " + what + " overflows a double");
   return v;
 }
 
@@ -125,6 +126,10 @@ void expect_size(SiconosTokenizer& tok, const std::string& what, const std::stri
 MatrixEntries read_dense(SiconosTokenizer& tok, Index rows, Index cols) {
   expect_size(tok, "dense row count", "rows", rows);
   expect_size(tok, "dense column count", "columns", cols);
+  std::uint64_t count = 0;  // rows, cols < 2^31: no overflow, checked all the same
+  if (!text::checked_mul(static_cast<std::uint64_t>(rows), static_cast<std::uint64_t>(cols), count))
+    tok.fail("dense matrix size overflows");
+  tok.require_values(count, "the dense " + std::to_string(rows) + "x" + std::to_string(cols) + " matrix");
   std::vector<Triplet> entries;
   for (Index j = 0; j < cols; ++j)
     for (Index i = 0; i < rows; ++i) {
@@ -189,7 +194,7 @@ MatrixEntries read_sparse_block(SiconosTokenizer& tok, Index rows, Index cols) {
     const std::string t = tok.token("block column index " + std::to_string(k));
     const long long v = tok.parse_integer(t, "block column index", -kMaxIndex, kMaxIndex);
     if (v < 0 || v >= bn1)
-      tok.fail("block column index " + t + " out of range [0, " + std::to_string(bn1) + ")");
+      tok.fail("block column index " + text::truncate(t) + " out of range [0, " + std::to_string(bn1) + ")");
     block_col.push_back(v);
   }
   std::vector<Triplet> entries;
@@ -227,7 +232,7 @@ MatrixEntries read_csparse(SiconosTokenizer& tok, Index rows, Index cols) {
   if (!split_fields(tok.rest_of_line()).empty()) tok.fail("unexpected text after the sparse origin id");
   const std::string banner = tok.line("CSparse banner line");
   if (banner.find("CSparse") == std::string::npos)
-    tok.fail("expected the CSparse banner line, found '" + banner + "'");
+    tok.fail("expected the CSparse banner line, found " + text::quote(banner));
   std::vector<std::string> h = split_fields(tok.line("CSparse header line"));
   const bool triplet = !h.empty() && h[0] == "triplet:";
   if (triplet) h.erase(h.begin());
@@ -235,11 +240,11 @@ MatrixEntries read_csparse(SiconosTokenizer& tok, Index rows, Index cols) {
     tok.fail("malformed CSparse header (expected 'M-by-N, nzmax: X nnz: Y')");
   const std::string dims = trim_trailing_comma(h[0]);
   const std::size_t by = dims.find("-by-");
-  if (by == std::string::npos) tok.fail("malformed CSparse dimensions '" + h[0] + "'");
+  if (by == std::string::npos) tok.fail("malformed CSparse dimensions " + text::quote(h[0]));
   const long long m = tok.parse_integer(dims.substr(0, by), "CSparse row count", 0, kMaxIndex);
   const long long n = tok.parse_integer(dims.substr(by + 4), "CSparse column count", 0, kMaxIndex);
   if (m != rows || n != cols)
-    tok.fail("dimension mismatch: CSparse matrix is " + dims + ", expected " + std::to_string(rows) + "-by-" +
+    tok.fail("dimension mismatch: CSparse matrix is " + text::truncate(dims) + ", expected " + std::to_string(rows) + "-by-" +
              std::to_string(cols));
   const long long nzmax = tok.parse_integer(h[2], "nzmax", 0, kMaxIndex);
   const long long nnz = tok.parse_integer(trim_trailing_comma(h[4]), "nnz", 0, nzmax);
@@ -265,11 +270,11 @@ MatrixEntries read_csparse(SiconosTokenizer& tok, Index rows, Index cols) {
     if (f.size() != 7 || f[0] != "col" || f[2] != ":" || f[3] != "locations" || f[5] != "to")
       tok.fail("malformed column header (expected 'col j : locations a to b')");
     if (tok.parse_integer(f[1], "column number", 0, kMaxIndex) != j)
-      tok.fail("column " + f[1] + " found where column " + std::to_string(j) + " was expected");
+      tok.fail("column " + text::truncate(f[1]) + " found where column " + std::to_string(j) + " was expected");
     const long long a = tok.parse_integer(f[4], "first location", 0, kMaxIndex);
     const long long b = tok.parse_integer(f[6], "last location", -1, kMaxIndex);
     if (a != next || b < a - 1 || b >= nnz)
-      tok.fail("column " + std::to_string(j) + " locations " + f[4] + " to " + f[6] +
+      tok.fail("column " + std::to_string(j) + " locations " + text::truncate(f[4]) + " to " + text::truncate(f[6]) +
                " inconsistent (expected to start at " + std::to_string(next) + " and stay below nnz " +
                std::to_string(nnz) + ")");
     for (long long p = a; p <= b; ++p) {
@@ -298,7 +303,7 @@ MatrixEntries read_numerics_matrix(SiconosTokenizer& tok, Index rows, Index cols
   const std::string t = tok.token("matrix storage type");
   const long long storage = tok.parse_integer(t, "matrix storage type", -kMaxIndex, kMaxIndex);
   if (storage < 0 || storage > 2)
-    tok.fail("unknown matrix storage type " + t + " (expected 0 dense, 1 sparse-block or 2 CSparse)");
+    tok.fail("unknown matrix storage type " + text::truncate(t) + " (expected 0 dense, 1 sparse-block or 2 CSparse)");
   expect_size(tok, "matrix row count", "rows", rows);
   expect_size(tok, "matrix column count", "columns", cols);
   switch (storage) {

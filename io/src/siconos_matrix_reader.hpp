@@ -3,9 +3,14 @@
 // keeps line numbers and can switch to whole lines (the CSparse dump is line-oriented), and
 // the reader of one Siconos NumericsMatrix (storage 0 dense, 1 sparse-block, 2 CSparse dump;
 // layouts documented in lcprelax/io/siconos_reader.hpp). Errors are lcprelax::InputError
-// "SOURCE:LINE: message".
+// "SOURCE:LINE: message". Lines are read through text::LineInput (core/text_input.hpp): at
+// most 1 MiB per line, no NUL bytes, a leading UTF-8 BOM skipped; echoed tokens are cut to
+// 64 characters. When the input's size in bytes is known, a declared count of values is
+// checked against it (require_values) before those values are read.
+#include <lcprelax/core/text_input.hpp>
 #include <lcprelax/sparse/types.hpp>
 
+#include <cstdint>
 #include <istream>
 #include <string>
 #include <vector>
@@ -14,7 +19,13 @@ namespace lcprelax::io::detail {
 
 class SiconosTokenizer {
  public:
-  SiconosTokenizer(std::istream& in, std::string source) : in_(in), source_(std::move(source)) {}
+  /// `input_bytes`: size of the whole input, text::kUnknownSize when not known.
+  SiconosTokenizer(std::istream& in, std::string source, std::uint64_t input_bytes = text::kUnknownSize)
+      : lines_(in, std::move(source)), input_bytes_(input_bytes) {}
+
+  /// Fails unless `count` more values (of WHAT) can fit in the input ("the file has only N
+  /// bytes"); `count` is computed by the caller with checked arithmetic (text::checked_*).
+  void require_values(std::uint64_t count, const std::string& what) const;
 
   /// Next whitespace-separated token (crossing line ends); throws "unexpected end of file
   /// while reading WHAT" at end of input.
@@ -38,17 +49,16 @@ class SiconosTokenizer {
   double parse_real(const std::string& text, const std::string& what) const;
 
   /// Line of the last token or line returned (1-based; the last line at end of input).
-  long current_line() const { return line_no_; }
-  [[noreturn]] void fail(const std::string& message) const;
+  long current_line() const { return lines_.line(); }
+  [[noreturn]] void fail(const std::string& message) const { lines_.fail(message); }
 
  private:
   bool fetch_line();
 
-  std::istream& in_;
-  std::string source_;
+  text::LineInput lines_;
+  std::uint64_t input_bytes_;
   std::string text_;
   std::size_t pos_ = 0;
-  long line_no_ = 0;
 };
 
 /// Splits a line on whitespace.

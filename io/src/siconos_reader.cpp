@@ -30,9 +30,10 @@ std::ifstream open(const std::string& path) {
 
 }  // namespace
 
-LcpData parse_siconos_lcp(std::istream& in, const std::string& source_name) {
-  detail::SiconosTokenizer tok(in, source_name);
+LcpData parse_siconos_lcp(std::istream& in, const std::string& source_name, std::uint64_t input_bytes) {
+  detail::SiconosTokenizer tok(in, source_name, input_bytes);
   const auto n = static_cast<Index>(tok.size("LCP size n", kMaxDim));
+  tok.require_values(static_cast<std::uint64_t>(n), "LCP size n = " + std::to_string(n) + ": q");
   const detail::MatrixEntries M = detail::read_numerics_matrix(tok, n, n);
   LcpData data;
   // Siconos reads size1 values of q; size1 == n is checked by read_numerics_matrix.
@@ -41,15 +42,16 @@ LcpData parse_siconos_lcp(std::istream& in, const std::string& source_name) {
   return data;
 }
 
-Fc2dData parse_siconos_fc2d(std::istream& in, const std::string& source_name) {
-  detail::SiconosTokenizer tok(in, source_name);
+Fc2dData parse_siconos_fc2d(std::istream& in, const std::string& source_name, std::uint64_t input_bytes) {
+  detail::SiconosTokenizer tok(in, source_name, input_bytes);
   const std::string dim_text = tok.token("problem dimension");
   const long long dim = tok.parse_integer(dim_text, "problem dimension", -kMaxDim, kMaxDim);
   if (dim != 2)
-    tok.fail("contact dimension " + dim_text +
+    tok.fail("contact dimension " + text::truncate(dim_text) +
              " not supported: only 2-D frictional contact (dim = 2) is read");
   const auto nc = static_cast<Index>(tok.size("number of contacts", kMaxDim / 2));
-  const Index n = 2 * nc;
+  const Index n = 2 * nc;  // nc <= kMaxDim / 2: no overflow
+  tok.require_values(3 * static_cast<std::uint64_t>(nc), "number of contacts " + std::to_string(nc) + ": q and mu");
   const detail::MatrixEntries W = detail::read_numerics_matrix(tok, n, n);
   Fc2dData data;
   data.contacts = nc;
@@ -59,7 +61,7 @@ Fc2dData parse_siconos_fc2d(std::istream& in, const std::string& source_name) {
     const std::string what = "mu[" + std::to_string(i) + "]";
     const std::string text = tok.token(what);
     mu.push_back(tok.parse_real(text, what));
-    if (mu.back() < 0.0) tok.fail("negative friction coefficient " + what + " = " + text);
+    if (mu.back() < 0.0) tok.fail("negative friction coefficient " + what + " = " + text::truncate(text));
   }
   data.mu = Eigen::Map<const Vector>(mu.data(), nc);
   data.W = W.build();
@@ -68,12 +70,12 @@ Fc2dData parse_siconos_fc2d(std::istream& in, const std::string& source_name) {
 
 LcpData read_siconos_lcp(const std::string& path) {
   std::ifstream in = open(path);
-  return parse_siconos_lcp(in, path);
+  return parse_siconos_lcp(in, path, text::regular_file_size(path));
 }
 
 Fc2dData read_siconos_fc2d(const std::string& path) {
   std::ifstream in = open(path);
-  return parse_siconos_fc2d(in, path);
+  return parse_siconos_fc2d(in, path, text::regular_file_size(path));
 }
 
 }  // namespace lcprelax::io

@@ -364,6 +364,15 @@ const QpResult& QpSolver::solve() {
     Px.noalias() = m.problem.P.selfadjointView<Eigen::Upper>() * x;
     info.objective = 0.5 * x.dot(Px) + m.problem.q.dot(x) + m.problem.r;
   }
+  // Never `solved` with a non-finite number (data near the overflow threshold can give an
+  // infinite objective or multiplier while the scaled residuals still look converged).
+  if (has_solution(info.status) &&
+      !(m.result.x.allFinite() && m.result.y.allFinite() && m.result.z.allFinite() && m.result.z_bounds.allFinite() &&
+        std::isfinite(info.objective) && std::isfinite(info.primal_residual) && std::isfinite(info.dual_residual) &&
+        std::isfinite(info.duality_gap))) {
+    info.status = QpStatus::numerical_error;
+    info.message = "the solution has a non-finite entry (overflow: data too large for doubles)";
+  }
   info.setup_seconds = m.setup_seconds;
   info.solve_seconds = seconds_since(t0);
   if (info.message.empty()) info.message = to_string(info.status);

@@ -3,6 +3,8 @@
 #include "qp_solver_impl.hpp"
 
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/kkt/qp_convexity.hpp>
+#include <lcprelax/sparse/dense_ldlt.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -80,11 +82,13 @@ bool QpSolver::Impl::refresh(const QpProblem& p) {
 void QpSolver::setup(const QpProblem& problem) {
   const auto t0 = Clock::now();
   problem.validate();
+  if (impl_->settings.check_convexity)  // a nonconvex P would end `solved` at a saddle point
+    if (std::string e = psd_error(problem.P); !e.empty()) throw InputError("invalid QP: the QP is nonconvex: " + e);
   impl_->build(problem);
   std::string message;
   if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message,
                          impl_->settings.kkt_ordering))
-    throw std::runtime_error("QpSolver::setup: " + message);
+    impl_->kkt_setup_failed("QpSolver::setup", message);
   impl_->is_setup = true;
   impl_->has_warm_start = false;
   impl_->result = QpResult{};
@@ -96,13 +100,15 @@ void QpSolver::update(const QpProblem& problem) {
   if (!problem.same_pattern(impl_->problem))
     throw InputError("QpSolver::update: the sparsity pattern or sizes differ from setup(); call setup()");
   problem.validate();
+  if (impl_->settings.check_convexity)  // allocation-free necessary condition only (qp_convexity.hpp)
+    if (std::string e = psd_minor_error(problem.P); !e.empty()) throw InputError("invalid QP: the QP is nonconvex: " + e);
   const auto t0 = Clock::now();
   if (!impl_->refresh(problem)) {  // rows changed between equality/one/two-sided: new structure
     impl_->build(problem);
     std::string message;
     if (!impl_->kkt.setup(impl_->form, impl_->settings.kkt_form, impl_->kkt_backend(), message,
                          impl_->settings.kkt_ordering))
-      throw std::runtime_error("QpSolver::update: " + message);
+      impl_->kkt_setup_failed("QpSolver::update", message);
   }
   impl_->result.info = impl_->fresh_info;
   impl_->setup_seconds = seconds_since(t0);
@@ -124,6 +130,19 @@ void QpSolver::warm_start(const Vector& x, const Vector& y, const Vector& z, con
   impl_->warm.z = z;
   impl_->warm.z_bounds = z_bounds;
   impl_->has_warm_start = true;
+}
+
+void QpSolver::Impl::kkt_setup_failed(const char* where, const std::string& message) const {
+  // The dense backend chosen explicitly for a KKT system above its size limit is the user's
+  // choice that cannot work (an input error, exit 2 in the CLI), not an internal failure.
+  if (settings.kkt_backend == KktBackend::dense) {
+    const long rows = static_cast<long>(form.n) + form.me + form.mg;
+    throw InputError(std::string(where) + ": kkt_backend = dense cannot factorize this problem (KKT dimension " +
+                     std::to_string(rows) + ", dense LDLᵀ handles at most " +
+                     std::to_string(sparse::DenseLdlt::kMaxDimension) + "): use cholmod or automatic (" + message +
+                     ")");
+  }
+  throw std::runtime_error(std::string(where) + ": " + message);
 }
 
 bool QpSolver::Impl::factorize(QpInfo& info) {

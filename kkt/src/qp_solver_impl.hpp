@@ -116,6 +116,9 @@ struct QpSolver::Impl {
   /// in place; false (nothing changed) when p classifies its rows differently.
   bool refresh(const QpProblem& p);
   /// settings.kkt_backend with automatic resolved on the current form (dense_max_kkt).
+  /// Throws for a failed KktSystem::setup: InputError when the user chose the dense backend
+  /// for a system above its size limit, else std::runtime_error.
+  [[noreturn]] void kkt_setup_failed(const char* where, const std::string& message) const;
   KktBackend kkt_backend() const {
     return detail::KktSystem::resolve_backend(settings.kkt_backend, form, settings.dense_max_kkt);
   }

@@ -214,7 +214,11 @@ struct LemkeSolver::Impl {
     refine.noalias() = M * result.z;
     result.w = refine + q_user;
     result.info.complementarity = n ? result.z.cwiseMin(result.w).cwiseAbs().maxCoeff() : 0.0;
-    if (result.info.complementarity <= res_tol) finish(LcpStatus::solved, "solved");
+    // Overflow (data near 1e308: z = x_B·‖q‖∞ or w = Mz + q beyond the double range) leaves
+    // min(z, w) finite or 0 where w = ∞: never `solved` with a non-finite z or w.
+    if (!result.z.allFinite() || !result.w.allFinite())
+      finish(LcpStatus::numerical_error, "z or w has a non-finite entry (overflow: data too large for doubles)");
+    else if (result.info.complementarity <= res_tol) finish(LcpStatus::solved, "solved");
     else finish(LcpStatus::numerical_error, "complementarity residual above tolerance after refactorization");
   }
 
@@ -459,7 +463,7 @@ const LcpResult& LemkeSolver::solve() {
       if ((s == LcpStatus::solved || s == LcpStatus::numerical_error) && m.result.z.size() == m.n) {
         m.result.w = M0 * m.result.z + m.q_user;
         m.result.info.complementarity = m.result.z.cwiseMin(m.result.w).cwiseAbs().maxCoeff();
-        if (m.result.info.complementarity <= m.res_tol) {
+        if (m.result.info.complementarity <= m.res_tol && m.result.z.allFinite() && m.result.w.allFinite()) {
           m.result.info.status = LcpStatus::solved;
           m.result.info.regularization = covering ? 0.0 : eps;
           m.result.info.message = std::string("solved on retry ") + std::to_string(k + 1) +

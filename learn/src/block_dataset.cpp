@@ -1,6 +1,7 @@
 // Block transitions: generation and CSV input/output (learn/block_dataset.hpp).
 #include <lcprelax/learn/block_dataset.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/core/text_input.hpp>
 
 #include <cerrno>
 #include <cmath>
@@ -81,15 +82,17 @@ BlockDataset generate_block_dataset(const BlockDataSettings& s) {
 BlockDataset read_block_csv(const std::string& path, double mass, double mg) {
   if (!std::isfinite(mass) || !(mass > 0.0)) throw InputError("block data: mass must be positive and finite");
   if (!std::isfinite(mg) || !(mg > 0.0)) throw InputError("block data: mg must be positive and finite");
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the file");
   std::string line;
   long lineno = 0;
   auto where = [&](long l) { return path + ":" + std::to_string(l) + ": "; };
+  // Lines of at most 1 MiB, no NUL bytes, a leading UTF-8 BOM skipped (core/text_input.hpp).
+  text::LineInput lines(in, path);
   // Header.
   std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++lineno;
+  while (lines.next(line)) {
+    lineno = lines.line();
     if (!trim(line).empty()) {
       header = split(line);
       break;
@@ -100,9 +103,9 @@ BlockDataset read_block_csv(const std::string& path, double mass, double mg) {
   for (std::size_t c = 0; c < header.size(); ++c) {
     int* slot = header[c] == "v" ? &col_v : header[c] == "v_next" ? &col_vn : header[c] == "u" ? &col_u : nullptr;
     if (slot == nullptr)
-      throw InputError(where(lineno) + "unknown column '" + header[c] + "' (column " + std::to_string(c + 1) +
+      throw InputError(where(lineno) + "unknown column " + text::quote(header[c]) + " (column " + std::to_string(c + 1) +
                        "; expected exactly v, v_next, u)");
-    if (*slot >= 0) throw InputError(where(lineno) + "column '" + header[c] + "' appears twice");
+    if (*slot >= 0) throw InputError(where(lineno) + "column " + text::quote(header[c]) + " appears twice");
     *slot = static_cast<int>(c);
   }
   for (auto [col, name] : {std::pair{col_v, "v"}, std::pair{col_vn, "v_next"}, std::pair{col_u, "u"}})
@@ -110,8 +113,8 @@ BlockDataset read_block_csv(const std::string& path, double mass, double mg) {
   BlockDataset d;
   d.mass = mass;
   d.mg = mg;
-  while (std::getline(in, line)) {
-    ++lineno;
+  while (lines.next(line)) {
+    lineno = lines.line();
     if (trim(line).empty()) continue;
     const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size())
@@ -124,7 +127,7 @@ BlockDataset read_block_csv(const std::string& path, double mass, double mg) {
       errno = 0;
       const double x = std::strtod(cell.c_str(), &end);
       if (cell.empty() || end != cell.c_str() + cell.size())
-        throw InputError(where(lineno) + "column '" + header[c] + "': '" + cell + "' is not a number");
+        throw InputError(where(lineno) + "column '" + header[c] + "': " + text::quote(cell) + " is not a number");
       if (!std::isfinite(x)) throw InputError(where(lineno) + "column '" + header[c] + "': value is NaN or infinite");
       const int k = static_cast<int>(c) == col_v ? 0 : static_cast<int>(c) == col_vn ? 1 : 2;
       values[k] = x;

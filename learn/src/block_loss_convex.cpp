@@ -29,6 +29,25 @@ class BlockConvexObjective final : public BlockObjective {
   using BlockObjective::BlockObjective;
   BlockMethod method() const override { return BlockMethod::convex; }
 
+  // Checkpoints (trainer.hpp): the per-sample QP warm starts (empty unless warm_start_qp).
+  void save_state(StateWriter& out) const override {
+    out.put_string("block convex: QP warm starts");
+    out.put_u64(warm_.size());
+    for (const ConvexWarm& w : warm_) {
+      out.put_vector(w.x);
+      out.put_vector(w.z_bounds);
+    }
+  }
+  void load_state(StateReader& in) override {
+    in.expect_tag("block convex: QP warm starts");
+    const std::size_t n = in.get_count(data_.samples.size(), true, "samples");
+    warm_.assign(n, ConvexWarm());
+    for (ConvexWarm& w : warm_) {
+      w.x = in.get_vector();
+      w.z_bounds = in.get_vector();
+    }
+  }
+
   SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override {
     const Theta th = read_theta(theta);
     const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];

@@ -20,6 +20,22 @@ class BlockHardObjective final : public BlockObjective {
   using BlockObjective::BlockObjective;
   BlockMethod method() const override { return BlockMethod::hard; }
 
+  // Checkpoints (trainer.hpp): the per-sample Lemke bases.
+  void save_state(StateWriter& out) const override {
+    out.put_string("block hard: Lemke bases");
+    out.put_u64(warm_.size());
+    for (const std::vector<bool>& w : warm_) out.put_bools(w);
+  }
+  void load_state(StateReader& in) override {
+    in.expect_tag("block hard: Lemke bases");
+    const std::size_t n = in.get_count(data_.samples.size(), true, "samples");
+    warm_.assign(n, {});
+    for (std::vector<bool>& w : warm_) {
+      w = in.get_bools();
+      if (!w.empty() && w.size() != 3) in.fail("a Lemke basis of " + std::to_string(w.size()) + " entries");
+    }
+  }
+
   SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override {
     const Theta th = read_theta(theta);
     const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];

@@ -19,6 +19,27 @@ class BlockRelaxedObjective final : public BlockObjective {
   using BlockObjective::BlockObjective;
   BlockMethod method() const override { return BlockMethod::relaxed; }
 
+  // Checkpoints (trainer.hpp): the per-sample QP warm starts (empty unless warm_start_qp).
+  void save_state(StateWriter& out) const override {
+    out.put_string("block relaxed: QP warm starts");
+    out.put_u64(warm_.size());
+    for (const RelaxedLcpResult& w : warm_) {
+      out.put_vector(w.qp_x);
+      out.put_vector(w.qp_z);
+      out.put_vector(w.qp_z_bounds);
+    }
+  }
+  void load_state(StateReader& in) override {
+    in.expect_tag("block relaxed: QP warm starts");
+    const std::size_t n = in.get_count(data_.samples.size(), true, "samples");
+    warm_.assign(n, RelaxedLcpResult());
+    for (RelaxedLcpResult& w : warm_) {
+      w.qp_x = in.get_vector();
+      w.qp_z = in.get_vector();
+      w.qp_z_bounds = in.get_vector();
+    }
+  }
+
   SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override {
     const Theta th = read_theta(theta);
     const BlockTransition& tr = data_.samples[static_cast<std::size_t>(sample)];

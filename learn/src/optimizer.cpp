@@ -37,6 +37,15 @@ void Optimizer::reset() {
   steps_ = 0;
 }
 
+void Optimizer::restore(const OptimizerState& state) {
+  if (state.m.size() != state.s.size()) throw InputError("optimizer state: moments of different sizes");
+  if (state.steps < 0) throw InputError("optimizer state: negative step count");
+  if (!state.m.allFinite() || !state.s.allFinite()) throw InputError("optimizer state: a moment is not finite");
+  m_ = state.m;
+  s_ = state.s;
+  steps_ = state.steps;
+}
+
 double Optimizer::learning_rate() const {
   return settings_.learning_rate / (1.0 + settings_.decay * static_cast<double>(steps_));
 }

@@ -115,6 +115,37 @@ void PolygonObjective::reset_times() {
     if (w) w->times = PolygonLossTimes();
 }
 
+void PolygonObjective::save_state(StateWriter& out) const {
+  out.put_string("polygon: warm starts");
+  out.put_u64(warm_.size());
+  for (std::size_t i = 0; i < warm_.size(); ++i) {
+    const PolygonWarmStart& w = warm_[i];
+    out.put_ints(warm_vertices_[i]);
+    out.put_bools(w.lemke_basis);
+    out.put_bool(w.relaxed_valid);
+    out.put_vector(w.relaxed.lambda);  // its size tells the relaxed loss that the start fits
+    out.put_vector(w.relaxed.qp_x);
+    out.put_vector(w.relaxed.qp_z);
+    out.put_vector(w.relaxed.qp_z_bounds);
+  }
+}
+
+void PolygonObjective::load_state(StateReader& in) {
+  in.expect_tag("polygon: warm starts");
+  in.get_count(warm_.size(), false, "samples");
+  for (std::size_t i = 0; i < warm_.size(); ++i) {
+    PolygonWarmStart w;
+    warm_vertices_[i] = in.get_ints();
+    w.lemke_basis = in.get_bools();
+    w.relaxed_valid = in.get_bool();
+    w.relaxed.lambda = in.get_vector();
+    w.relaxed.qp_x = in.get_vector();
+    w.relaxed.qp_z = in.get_vector();
+    w.relaxed.qp_z_bounds = in.get_vector();
+    warm_[i] = std::move(w);
+  }
+}
+
 void PolygonObjective::reset_warm_starts() {
   for (PolygonWarmStart& w : warm_) w = PolygonWarmStart();
   for (auto& v : warm_vertices_) v.clear();

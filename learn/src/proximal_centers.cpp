@@ -2,6 +2,7 @@
 #include "proximal_centers.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace lcprelax::learn::detail {
 namespace {
@@ -63,6 +64,27 @@ void ProximalCenters::record(const std::vector<Contact>& contacts, const Contact
 void ProximalCenters::commit() {
   std::sort(next_.begin(), next_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   stored_.swap(next_);
+  next_.clear();
+}
+
+void ProximalCenters::save(StateWriter& out) const {
+  out.put_u64(stored_.size());
+  for (const auto& [k, v] : stored_) {
+    for (int x : k) out.put_i64(x);
+    out.put_double(v);
+  }
+}
+
+void ProximalCenters::load(StateReader& in) {
+  const std::uint64_t n = in.get_u64();
+  if (n > in.remaining() / (8 * (std::tuple_size<Key>::value + 1))) in.fail("a centre count of " + std::to_string(n) + " exceeds the bytes left");
+  stored_.assign(static_cast<std::size_t>(n), {});
+  for (auto& [k, v] : stored_) {
+    for (int& x : k) x = static_cast<int>(in.get_int(INT32_MIN, INT32_MAX, "a contact key"));
+    v = in.get_double();
+  }
+  for (std::size_t i = 1; i < stored_.size(); ++i)
+    if (!(stored_[i - 1].first < stored_[i].first)) in.fail("proximal centres out of order");
   next_.clear();
 }
 

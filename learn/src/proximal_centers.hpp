@@ -7,6 +7,7 @@
 // and static shape) and the narrow-phase feature that made it (Contact::Feature) — and, for
 // γ, the friction row's rank among its contact's rows. Contacts without a stored value get
 // centre 0 and are counted. Internal to the learn layer.
+#include <lcprelax/learn/state_stream.hpp>
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/world/world.hpp>
 
@@ -29,6 +30,10 @@ class ProximalCenters {
   void commit();
   void clear();
   bool empty() const { return stored_.empty(); }
+  /// The stored values, for training checkpoints (Objective::save_state).
+  void save(StateWriter& out) const;
+  /// Reads what save() wrote (sorted keys); InputError through `in` otherwise.
+  void load(StateReader& in);
 
  private:
   using Key = std::array<int, 10>;  // contact identity (9) and slot: −1 for λ̃n, j for the j-th γ

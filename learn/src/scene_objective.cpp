@@ -55,6 +55,18 @@ void SceneObjective::reset_centers() {
 
 SceneObjective::~SceneObjective() = default;
 
+void SceneObjective::save_state(StateWriter& out) const {
+  out.put_string("scene: proximal centres");
+  out.put_u64(centers_.size());
+  for (const detail::ProximalCenters& c : centers_) c.save(out);
+}
+
+void SceneObjective::load_state(StateReader& in) {
+  in.expect_tag("scene: proximal centres");
+  in.get_count(centers_.size(), false, "transitions");
+  for (detail::ProximalCenters& c : centers_) c.load(in);
+}
+
 Index SceneObjective::num_samples() const { return static_cast<Index>(data_.transitions.size()); }
 
 void SceneObjective::prepare(const ParameterSet& theta, int threads) {

@@ -1,5 +1,6 @@
-// Mini-batch training loop (trainer.hpp).
+// Mini-batch training loop with checkpoints (trainer.hpp, checkpoint.hpp).
 #include <lcprelax/learn/trainer.hpp>
+#include <lcprelax/learn/checkpoint.hpp>
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
 
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <sstream>
 
 namespace lcprelax::learn {
 
@@ -52,6 +54,92 @@ BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const
   return r;
 }
 
+namespace {
+
+void write_log_header(std::ostream& log, const ParameterSet& theta) {
+  log << "epoch,loss,validation_loss,gradient_norm,seconds,samples_per_second,failed,full_loss,"
+         "full_gradient_norm,relative_loss_change";
+  for (Index i = 0; i < theta.size(); ++i) log << ',' << theta[i].name;
+  log << '\n';
+}
+
+void write_log_row(std::ostream& log, const EpochRecord& rec) {
+  log << rec.epoch << ',' << rec.loss << ',' << rec.validation_loss << ',' << rec.gradient_norm << ',' << rec.seconds
+      << ',' << rec.samples_per_second << ',' << rec.failed << ',' << rec.full_loss << ',' << rec.full_gradient_norm
+      << ',' << rec.relative_loss_change;
+  for (Index i = 0; i < rec.theta.size(); ++i) log << ',' << rec.theta(i);
+  log << '\n';
+}
+
+// The loop state of train() that is not in θ or the optimizer (checkpoint.hpp).
+struct LoopState {
+  std::mt19937_64 rng;
+  std::vector<Index> order;
+  long evaluated_total = 0;
+  double previous_full_loss = std::numeric_limits<double>::quiet_NaN();
+  int streak = 0;
+};
+
+TrainCheckpoint snapshot(const Objective& objective, const ParameterSet& theta, const Optimizer& optimizer,
+                         const LoopState& loop, const TrainResult& out, const CheckpointIdentity& identity) {
+  TrainCheckpoint c;
+  c.identity = identity;
+  c.epoch = static_cast<int>(out.history.size());
+  c.converged = out.converged;
+  c.streak = loop.streak;
+  c.previous_full_loss = loop.previous_full_loss;
+  c.evaluated_total = loop.evaluated_total;
+  c.failed = out.failed;
+  c.first_failure = out.first_failure;
+  c.theta = theta.values();
+  c.optimizer = optimizer.state();
+  std::ostringstream rng;
+  rng << loop.rng;
+  c.rng = rng.str();
+  c.order = loop.order;
+  c.history = out.history;
+  StateWriter w;
+  objective.save_state(w);
+  c.objective_state = w.take();
+  return c;
+}
+
+// Restores θ, the optimizer, the loop state, the result so far and the objective's state
+// from the checkpoint at `path` after checking that it belongs to this run.
+void resume(const std::string& path, const CheckpointIdentity& identity, const TrainSettings& settings,
+            const std::vector<Index>& training, Objective& objective, ParameterSet& theta, Optimizer& optimizer,
+            LoopState& loop, TrainResult& out) {
+  TrainCheckpoint c = read_checkpoint(path);
+  check_checkpoint_identity(c.identity, identity, path);
+  const std::string name = "checkpoint '" + path + "'";
+  if (c.epoch > settings.epochs)
+    throw InputError(name + " has " + std::to_string(c.epoch) + " epochs done, more than the cap of " +
+                     std::to_string(settings.epochs));
+  if (c.theta.size() != theta.size()) throw InputError(name + ": θ of another size");
+  std::vector<Index> a = c.order, b = training;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  if (a != b) throw InputError(name + ": the shuffled order is not a permutation of the training set");
+  std::istringstream rng(c.rng);
+  rng >> loop.rng;
+  if (!rng) throw InputError(name + ": unreadable shuffle generator state");
+  theta.set_values(c.theta);
+  optimizer.restore(c.optimizer);
+  loop.order = std::move(c.order);
+  loop.evaluated_total = c.evaluated_total;
+  loop.previous_full_loss = c.previous_full_loss;
+  loop.streak = c.streak;
+  out.history = std::move(c.history);
+  out.failed = c.failed;
+  out.first_failure = std::move(c.first_failure);
+  out.converged = c.converged;
+  StateReader in(c.objective_state, name + ": objective state");
+  objective.load_state(in);
+  in.expect_end();
+}
+
+}  // namespace
+
 TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<Index>& training,
                   const std::vector<Index>& validation, const TrainSettings& settings) {
   const std::string error = settings.validation_error();
@@ -61,32 +149,41 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   check_indices(validation, objective.num_samples(), "validation");
 
   Optimizer optimizer(settings.optimizer);
-  std::mt19937_64 rng(settings.seed);
-  std::vector<Index> order = training;
+  LoopState loop;
+  loop.rng.seed(settings.seed);
+  loop.order = training;
+  std::vector<Index>& order = loop.order;
   const std::size_t batch = settings.batch > 0 ? static_cast<std::size_t>(settings.batch) : order.size();
-  const bool writer = !settings.distributed || mpi::mpi_rank() == 0;  // progress and log
+  const int rank = settings.distributed ? mpi::mpi_rank() : 0;
+  const bool writer = rank == 0;  // progress and log
+  const std::string checkpoint = settings.checkpoint.empty() ? std::string() : checkpoint_path_for_rank(settings.checkpoint, rank);
+  if (!checkpoint.empty()) check_checkpoint_writable(checkpoint);
+  const CheckpointIdentity identity = checkpoint_identity(objective, theta, training, validation, settings);
+
+  TrainResult out;
+  if (!settings.resume.empty())
+    resume(checkpoint_path_for_rank(settings.resume, rank), identity, settings, training, objective, theta, optimizer,
+           loop, out);
+  const int first_epoch = static_cast<int>(out.history.size()) + 1;
+  const double seconds_before = out.history.empty() ? 0.0 : out.history.back().seconds;
   std::ofstream log;
   if (!settings.log_csv.empty() && writer) {
     log.open(settings.log_csv);
     if (!log) throw InputError("cannot write the training log '" + settings.log_csv + "'");
-    log << "epoch,loss,validation_loss,gradient_norm,seconds,samples_per_second,failed,full_loss,"
-           "full_gradient_norm,relative_loss_change";
-    for (Index i = 0; i < theta.size(); ++i) log << ',' << theta[i].name;
-    log << '\n';
     log.precision(17);
+    write_log_header(log, theta);
+    for (const EpochRecord& rec : out.history) write_log_row(log, rec);  // a resumed run's epochs so far
   }
 
-  TrainResult out;
   const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  long evaluated_total = 0;
+  auto elapsed = [&] {
+    return seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   const bool full_batch = batch >= order.size();
   const bool test_on = settings.patience > 0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  double previous_full_loss = nan;
-  int streak = 0;
-  for (int epoch = 1; epoch <= settings.epochs && !out.converged; ++epoch) {
-    if (settings.shuffle) shuffle(order, rng);
+  for (int epoch = first_epoch; epoch <= settings.epochs && !out.converged; ++epoch) {
+    if (settings.shuffle) shuffle(order, loop.rng);
     EpochRecord rec;
     rec.epoch = epoch;
     double loss_sum = 0.0;
@@ -100,7 +197,7 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
       if (r.evaluated == 0) continue;
       loss_sum += r.loss * r.evaluated;
       loss_count += r.evaluated;
-      evaluated_total += r.evaluated;
+      loop.evaluated_total += r.evaluated;
       const Vector g = theta.chain_gradient(r.gradient);
       rec.gradient_norm = g.norm();
       Vector xi = theta.free();
@@ -121,20 +218,20 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
       complete = r.failed == 0 && r.evaluated > 0;
       if (r.evaluated > 0) rec.full_loss = r.loss, rec.full_gradient_norm = theta.chain_gradient(r.gradient).norm();
     }
-    if (complete && std::isfinite(previous_full_loss) && std::isfinite(rec.full_loss))
-      rec.relative_loss_change = std::abs(previous_full_loss - rec.full_loss) /
-                                 std::max({std::abs(previous_full_loss), std::abs(rec.full_loss), 1.0});
+    if (complete && std::isfinite(loop.previous_full_loss) && std::isfinite(rec.full_loss))
+      rec.relative_loss_change = std::abs(loop.previous_full_loss - rec.full_loss) /
+                                 std::max({std::abs(loop.previous_full_loss), std::abs(rec.full_loss), 1.0});
     const bool holds = complete && rec.relative_loss_change <= settings.rel_loss_tol &&
                        rec.full_gradient_norm <= settings.grad_tol;
-    streak = holds ? streak + 1 : 0;
-    rec.streak = streak;
-    previous_full_loss = complete ? rec.full_loss : nan;
-    if (test_on && streak >= settings.patience) out.converged = true;
+    loop.streak = holds ? loop.streak + 1 : 0;
+    rec.streak = loop.streak;
+    loop.previous_full_loss = complete ? rec.full_loss : nan;
+    if (test_on && loop.streak >= settings.patience) out.converged = true;
     rec.validation_loss = nan;
     if (!validation.empty()) rec.validation_loss = evaluate_mean(objective, theta, validation, settings.threads, settings.distributed).loss;
     rec.theta = theta.values();
     rec.seconds = elapsed();
-    rec.samples_per_second = rec.seconds > 0.0 ? static_cast<double>(evaluated_total) / rec.seconds : 0.0;
+    rec.samples_per_second = rec.seconds > 0.0 ? static_cast<double>(loop.evaluated_total) / rec.seconds : 0.0;
     out.failed += rec.failed;
     if (settings.progress && writer) {
       const double eta = rec.seconds / epoch * (settings.epochs - epoch);
@@ -143,16 +240,11 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
       for (Index i = 0; i < theta.size() && i < 6; ++i) std::fprintf(stderr, " %s=%.6g", theta[i].name.c_str(), theta[i].value);
       std::fflush(stderr);
     }
-    if (log) {
-      log << epoch << ',' << rec.loss << ',' << rec.validation_loss << ',' << rec.gradient_norm << ',' << rec.seconds
-          << ',' << rec.samples_per_second << ',' << rec.failed << ',' << rec.full_loss << ','
-          << rec.full_gradient_norm << ',' << rec.relative_loss_change;
-      for (Index i = 0; i < theta.size(); ++i) log << ',' << theta[i].value;
-      log << '\n';
-    }
+    if (log) write_log_row(log, rec);
     out.history.push_back(std::move(rec));
+    if (!checkpoint.empty()) write_checkpoint(checkpoint, snapshot(objective, theta, optimizer, loop, out, identity));
   }
-  if (settings.progress && writer && settings.epochs > 0) std::fprintf(stderr, "\n");
+  if (settings.progress && writer && first_epoch <= settings.epochs && settings.epochs > 0) std::fprintf(stderr, "\n");
   char reason[160];
   if (out.converged)
     std::snprintf(reason, sizeof reason, "converged: relative loss change <= %g and gradient norm <= %g for %d epochs",

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <sstream>
+#include <string>
 
 #ifdef LCPRELAX_HAS_OPENMP
 #include <omp.h>
@@ -21,6 +23,20 @@ namespace {
 // is milliseconds there, while on pile-sized islands (hundreds of contacts) it can take
 // seconds to minutes with its retries (contact_step.hpp), so those keep phase 1's answer.
 constexpr Index kConvexFallbackMaxContacts = 64;
+
+// An island with more than kRedundantContactsPerDof contacts per degree of freedom (bodies
+// stacked into each other: 100 coincident boxes pose 9,900 contacts on 300 DOFs, 300 boxes
+// 89,700 on 900) makes every Delassus-based LCP huge, singular and degenerate: Lemke's
+// lexicographic ties then ran for minutes per step, and the Delassus matrix (nnz ~ Σ_b k_b²,
+// k_b the contacts of body b) exhausted the memory (300 boxes: bad_alloc at 4.4 GB). Such an
+// island is solved by the interior point on the primal side only (the convex model in its
+// lifted form, the QP position projection), whose size is linear in the contacts. A
+// physical packing has about 1–2 contacts per DOF; 4 is far from it.
+constexpr Index kRedundantContactsPerDof = 4;
+
+bool redundant_island(const ContactSystem& s) {
+  return s.num_contacts() > kRedundantContactsPerDof * s.num_dofs();
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -63,6 +79,34 @@ Simulator::Simulator(World world, SimulatorSettings settings) : world_(std::move
     if (!b.pose.allFinite() || !b.velocity.allFinite())
       throw InputError("bodies[" + std::to_string(i) + "]: pose and velocity must be finite");
   }
+  check_extreme_values();
+}
+
+// Values that are finite but overflow what a step derives from them (the speculative
+// contact margin 2Δt·(|v| + |ω|·r), positions after a step) are blamed on the user's field,
+// not on the derived one ("CollisionSettings: margin = inf" named no input).
+void Simulator::check_extreme_values() const {
+  if (!world_.gravity.allFinite() || world_.gravity.norm() > kMaxSceneMagnitude)
+    throw InputError("gravity: |g| must be at most " + std::to_string(kMaxSceneMagnitude) + " m/s²");
+  for (std::size_t i = 0; i < world_.bodies.size(); ++i) {
+    const RigidBody& b = world_.bodies[i];
+    const std::string name = "bodies[" + std::to_string(i) + "]";
+    auto too_large = [&](const char* field, double value, const char* unit) {
+      std::ostringstream os;
+      os << name << "." << field << ": |" << value << "| exceeds " << kMaxSceneMagnitude << " " << unit;
+      throw InputError(os.str());
+    };
+    if (b.pose.head<2>().cwiseAbs().maxCoeff() > kMaxSceneMagnitude)
+      too_large("position", b.pose.head<2>().cwiseAbs().maxCoeff(), "m");
+    if (std::abs(b.pose.z()) > kMaxSceneMagnitude) too_large("angle", b.pose.z(), "rad");
+    if (b.velocity.head<2>().cwiseAbs().maxCoeff() > kMaxSceneMagnitude)
+      too_large("velocity", b.velocity.head<2>().cwiseAbs().maxCoeff(), "m/s");
+    if (std::abs(b.velocity.z()) > kMaxSceneMagnitude) too_large("angular_velocity", b.velocity.z(), "rad/s");
+  }
+  const double margin = speculative_contact_margin(world_, settings_);
+  if (!std::isfinite(margin))
+    throw InputError("bodies: velocities, gravity and dt = " + std::to_string(settings_.dt) +
+                     " give a non-finite contact margin (a body moves too far in one step)");
 }
 
 std::vector<Simulator::ContactKey> Simulator::contact_keys() const {
@@ -96,16 +140,20 @@ void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, 
   const Vector phi_next = s.phi + dt * (s.Jn * v_next);
   if (phi_next.minCoeff() >= -slop) return;
   const Vector bound = phi_next + Vector::Constant(nc, slop);  // Jn Δq + bound ≥ 0
-  // Dual: the LCP 0 ≤ z ⊥ Wnn z + bound ≥ 0, Δq = M⁻¹Jnᵀz (exact, by Lemke).
-  const SparseMatrix JnMinv = s.Jn * s.minv.asDiagonal();
-  SparseMatrix Wnn = JnMinv * s.Jn.transpose();
-  Wnn.makeCompressed();
-  LemkeSettings plain = settings_.lemke;  // no retries: the interior point below is the fallback
-  plain.covering_retries = 0;
-  plain.regularization_retries = 0;
-  LemkeSolver lemke(plain);
-  lemke.setup(Wnn, bound);
-  const LcpResult& r = lemke.solve();
+  // Dual: the LCP 0 ≤ z ⊥ Wnn z + bound ≥ 0, Δq = M⁻¹Jnᵀz (exact, by Lemke), unless the
+  // island is heavily redundant (redundant_island): then straight to the primal QP below.
+  LcpResult r;
+  if (!redundant_island(s)) {
+    const SparseMatrix JnMinv = s.Jn * s.minv.asDiagonal();
+    SparseMatrix Wnn = JnMinv * s.Jn.transpose();
+    Wnn.makeCompressed();
+    LemkeSettings plain = settings_.lemke;  // no retries: the interior point below is the fallback
+    plain.covering_retries = 0;
+    plain.regularization_retries = 0;
+    LemkeSolver lemke(plain);
+    lemke.setup(Wnn, bound);
+    r = lemke.solve();
+  }
   Vector dq;
   if (has_solution(r.info.status)) {
     dq = s.minv.cwiseProduct(s.Jn.transpose() * r.z);
@@ -199,7 +247,14 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     try {
       wk.system = assemble_contact_system(world, contacts_, islands[i], dt, applied);
       const ContactSystem& s = wk.system;
-      if (lcp) {
+      if (lcp && redundant_island(s)) {  // see kRedundantContactsPerDof: the convex model, reported
+        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
+        const std::string why = std::to_string(s.num_contacts()) + " contacts on " + std::to_string(s.num_dofs()) +
+                                " degrees of freedom (bodies inside each other?): too redundant for the LCP model; ";
+        wk.solution.message = why + (has_solution(wk.solution.status) ? "convex model used"
+                                                                      : "convex model: " + wk.solution.message);
+        wk.solution.status = ContactStatus::failed;
+      } else if (lcp) {
         const Index nc = s.num_contacts(), nf = s.num_friction();
         std::vector<bool> warm;
         if (settings_.warm_start) {
@@ -221,7 +276,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
       }
       // A fallback's answer is used, but the island still counts as failed.
-      if (!has_solution(wk.solution.status) && lcp) {  // fallback: the convex model (interior point)
+      if (!has_solution(wk.solution.status) && lcp && !redundant_island(s)) {  // fallback: the convex model
         ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho);
         fallback.message = wk.solution.message + (has_solution(fallback.status) ? "; convex model used"
                                                                                 : "; convex fallback: " + fallback.message);
@@ -229,7 +284,8 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         wk.solution = std::move(fallback);
         wk.solution.status = ContactStatus::failed;
       }
-      if (!has_solution(wk.solution.status) && !lcp && s.num_contacts() <= kConvexFallbackMaxContacts) {
+      if (!has_solution(wk.solution.status) && !lcp && s.num_contacts() <= kConvexFallbackMaxContacts &&
+          !redundant_island(s)) {
         // fallback: the Stewart–Trinkle LCP (Lemke, cold), kept only if Lemke solves it
         ContactSolution fallback = solve_lcp_model(s, dt, settings_.lemke, {});
         if (has_solution(fallback.status)) {

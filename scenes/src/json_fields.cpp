@@ -2,6 +2,7 @@
 #include "json_fields.hpp"
 
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/core/text_input.hpp>
 
 #include <cmath>
 #include <set>
@@ -10,7 +11,7 @@
 namespace lcprelax::scene_json {
 
 void fail(const std::string& path, const std::string& message) {
-  throw InputError(path.empty() ? message : path + ": " + message);
+  throw InputError(text::clip_message(path.empty() ? message : path + ": " + message));
 }
 
 std::string member(const std::string& path, std::string_view key) {
@@ -41,7 +42,7 @@ class DuplicateKeyCheck {
         Frame& f = frames_.back();
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second)
-          throw InputError("duplicate key '" + f.key + "' in " + where(parent_path()));
+          throw InputError(text::clip_message("duplicate key " + text::quote(f.key) + " in " + where(parent_path())));
         break;
       }
     }
@@ -74,7 +75,7 @@ Json parse_json(std::string_view text) {
   try {
     return Json::parse(text.begin(), text.end(), DuplicateKeyCheck{});
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(std::string("invalid JSON: ") + e.what());
+    throw InputError(text::clip_message(std::string("invalid JSON: ") + e.what()));
   }
 }
 
@@ -84,7 +85,7 @@ void expect_object(const Json& j, const std::string& path,
   for (auto it = j.begin(); it != j.end(); ++it) {
     bool known = false;
     for (std::string_view a : allowed) known = known || it.key() == a;
-    if (!known) throw InputError("unknown key '" + it.key() + "' in " + where(path));
+    if (!known) throw InputError(text::clip_message("unknown key " + text::quote(it.key()) + " in " + where(path)));
   }
 }
 

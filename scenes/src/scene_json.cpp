@@ -2,6 +2,7 @@
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/core/text_input.hpp>
 
 #include "json_fields.hpp"
 
@@ -97,7 +98,14 @@ RigidBody read_body(const Json& j, const std::string& path) {
   const Json* inertia = find(j, "inertia");
   if (density && (mass || inertia)) fail(path, "give either 'density' or 'mass' and 'inertia', not both");
   if (density) {
-    const MassProperties props = mass_properties(polygon, positive(*density, member(path, "density")));
+    const std::string dpath = member(path, "density");
+    const double rho = positive(*density, dpath);
+    MassProperties props;
+    try {
+      props = mass_properties(polygon, rho);
+    } catch (const InputError& e) {  // an extreme density: mass or inertia overflows
+      fail(dpath, e.what());
+    }
     body.mass = props.mass;
     body.inertia = props.inertia;
   } else if (mass || inertia) {
@@ -175,10 +183,14 @@ Scene parse_scene(std::string_view json_text) {
   if (const Json* dt = find(root, "dt")) s.dt = positive(*dt, "dt");
   if (const Json* k = find(root, "steps")) scene.steps = static_cast<int>(scene_json::integer(*k, "steps", 0, kMaxInt));
   if (const Json* m = find(root, "model")) {
+    const std::string model = scene_json::string(*m, "model");
     try {
-      s.model = parse_contact_model(scene_json::string(*m, "model"));
-    } catch (const InputError& e) {
-      fail("model", e.what());
+      s.model = parse_contact_model(model);
+    } catch (const InputError& e) {  // its message echoes the whole string: cut it
+      const std::string what = e.what();
+      fail("model", model.size() > text::kMaxEchoChars
+                        ? "unknown contact model " + text::quote(model) + what.substr(what.rfind(" ("))
+                        : what);
     }
   }
   if (const Json* m = find(root, "margin")) s.margin = nonnegative(*m, "margin");
@@ -193,12 +205,21 @@ Scene parse_scene(std::string_view json_text) {
 Scene load_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // At most kMaxSceneBytes are read (a device such as /dev/zero never ends).
+  std::string json;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    const std::string_view chunk(buffer, static_cast<std::size_t>(in.gcount()));
+    if (const std::size_t nul = chunk.find('\0'); nul != std::string_view::npos)  // never in JSON text
+      throw InputError(path + ": NUL byte at offset " + std::to_string(json.size() + nul) + " (not a JSON text)");
+    json.append(chunk);
+    if (json.size() > kMaxSceneBytes)
+      throw InputError(path + ": scene file larger than " + std::to_string(kMaxSceneBytes) + " bytes (the limit)");
+  }
   try {
-    return parse_scene(text.str());
+    return parse_scene(json);
   } catch (const InputError& e) {
-    throw InputError(path + ": " + e.what());
+    throw InputError(text::clip_message(path + ": " + e.what()));
   }
 }
 

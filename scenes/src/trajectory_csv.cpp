@@ -1,6 +1,7 @@
 // Trajectory CSV writer and reader (scenes/trajectory_csv.hpp).
 #include <lcprelax/scenes/trajectory_csv.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/core/text_input.hpp>
 
 #include <array>
 #include <charconv>
@@ -105,12 +106,14 @@ void TrajectoryWriter::flush() {
 std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string& source_name) {
   std::size_t line_no = 0;
   auto fail = [&](const std::string& message) -> void {
-    throw InputError(source_name + ":" + std::to_string(line_no) + ": " + message);
+    throw InputError(text::clip_message(source_name + ":" + std::to_string(line_no) + ": " + message));
   };
   std::string line;
+  // Lines of at most 1 MiB, no NUL bytes, a leading UTF-8 BOM skipped (core/text_input.hpp).
+  text::LineInput lines(in, source_name);
   auto next_line = [&]() -> bool {  // next non-blank line, without a trailing '\r'
-    while (std::getline(in, line)) {
-      ++line_no;
+    while (lines.next(line)) {
+      line_no = static_cast<std::size_t>(lines.line());
       if (!line.empty() && line.back() == '\r') line.pop_back();
       if (line.find_first_not_of(" \t") != std::string::npos) return true;
     }
@@ -128,8 +131,8 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
   for (std::size_t i = 0; i < names.size(); ++i) {
     std::size_t c = 0;
     while (c < kColumns.size() && names[i] != kColumns[c]) ++c;
-    if (c == kColumns.size()) fail("unknown column '" + std::string(names[i]) + "'");
-    if (column_of[c] >= 0) fail("column '" + std::string(names[i]) + "' appears twice");
+    if (c == kColumns.size()) fail("unknown column " + text::quote(names[i]));
+    if (column_of[c] >= 0) fail("column " + text::quote(names[i]) + " appears twice");
     column_of[c] = static_cast<int>(i);
   }
   for (std::size_t c = 0; c < kRequiredColumns; ++c)
@@ -163,12 +166,12 @@ std::vector<TrajectoryFrame> read_trajectory(std::istream& in, const std::string
       if (cell.empty()) fail(where + "empty cell");
       if (cell.size() > 1 && cell[0] == '+' && cell[1] != '-' && cell[1] != '+') cell.remove_prefix(1);
       const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v[c]);
-      if (r.ec == std::errc::result_out_of_range) fail(where + "value out of range '" + std::string(cell) + "'");
+      if (r.ec == std::errc::result_out_of_range) fail(where + "value out of range " + text::quote(cell));
       if (r.ec != std::errc() || r.ptr != cell.data() + cell.size())
-        fail(where + "not a number '" + std::string(cell) + "'");
-      if (!std::isfinite(v[c])) fail(where + "not finite '" + std::string(cell) + "'");
+        fail(where + "not a number " + text::quote(cell));
+      if (!std::isfinite(v[c])) fail(where + "not finite " + text::quote(cell));
       if ((c == kStep || c == kBody) && (v[c] != std::floor(v[c]) || v[c] < 0.0 || v[c] > 2147483647.0))
-        fail(where + "expected an integer >= 0, got '" + std::string(cell) + "'");
+        fail(where + "expected an integer >= 0, got " + text::quote(cell));
     }
     const int step = static_cast<int>(v[kStep]), body = static_cast<int>(v[kBody]);
     if (frames.empty() || step != frames.back().step) {

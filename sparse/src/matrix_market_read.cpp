@@ -12,7 +12,9 @@
 #include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <cstdint>
 #include <fstream>
+#include <istream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,29 +47,36 @@ std::string lower(std::string_view s) {
 
 bool is_blank(std::string_view line) { return split(line).empty(); }
 
-// Reads a file line by line, keeping the 1-based number of the last line read.
+// Reads a stream line by line (text::LineInput: 1 MiB lines, no NUL, BOM skipped), keeping
+// the 1-based number of the last line read.
 class LineReader {
  public:
-  explicit LineReader(const std::string& path) : path_(path), in_(path) {
-    if (!in_) throw InputError(path + ": cannot open file");
-  }
+  LineReader(std::istream& in, const std::string& source) : lines_(in, source) {}
   bool next(std::string& line) {
-    if (!std::getline(in_, line)) return false;
-    ++line_no_;
+    if (!lines_.next(line)) return false;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     return true;
   }
-  long line_no() const { return line_no_; }
-  [[noreturn]] void fail(long line, const std::string& message) const {
-    throw InputError(path_ + ":" + std::to_string(line) + ": " + message);
-  }
-  [[noreturn]] void fail(const std::string& message) const { fail(line_no_, message); }
+  long line_no() const { return lines_.line(); }
+  std::uint64_t bytes_read() const { return lines_.bytes_read(); }
+  [[noreturn]] void fail(long line, const std::string& message) const { lines_.fail_at(line, message); }
+  [[noreturn]] void fail(const std::string& message) const { fail(line_no(), message); }
 
  private:
-  std::string path_;
-  std::ifstream in_;
-  long line_no_ = 0;
+  text::LineInput lines_;
 };
+
+std::ifstream open(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open file");
+  return in;
+}
+
+// Largest dimension a matrix of an input of `bytes` bytes may declare (header comment).
+std::uint64_t max_dimension(std::uint64_t bytes) {
+  constexpr std::uint64_t floor = std::uint64_t{1} << 20;
+  return bytes == text::kUnknownSize ? INT_MAX : std::min<std::uint64_t>(INT_MAX, std::max(floor, bytes));
+}
 
 long long parse_int(const LineReader& r, std::string_view tok, const char* what) {
   long long v = 0;
@@ -76,7 +85,7 @@ long long parse_int(const LineReader& r, std::string_view tok, const char* what)
   if (first != last && *first == '+') ++first;
   auto [end, ec] = std::from_chars(first, last, v);
   if (ec != std::errc() || end != last) {
-    r.fail("bad " + std::string(what) + " '" + std::string(tok) + "'");
+    r.fail("bad " + std::string(what) + " " + text::quote(tok));
   }
   return v;
 }
@@ -86,8 +95,8 @@ double parse_value(const LineReader& r, std::string_view tok, Field field) {
   const std::string s(tok);
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size()) r.fail("bad real value '" + s + "'");
-  if (!std::isfinite(v)) r.fail("non-finite value '" + s + "'");
+  if (end != s.c_str() + s.size()) r.fail("bad real value " + text::quote(s));
+  if (!std::isfinite(v)) r.fail("non-finite value " + text::quote(s));
   return v;
 }
 
@@ -112,7 +121,7 @@ Header parse_banner(LineReader& r) {
     r.fail("bad banner, expected '%%MatrixMarket matrix <format> <field> <symmetry>'");
   }
   if (t.size() != 5) r.fail("bad banner, expected 5 words, found " + std::to_string(t.size()));
-  if (lower(t[1]) != "matrix") r.fail("unsupported object '" + std::string(t[1]) + "'");
+  if (lower(t[1]) != "matrix") r.fail("unsupported object " + text::quote(t[1]));
   Header h;
   const std::string format = lower(t[2]), field = lower(t[3]), symmetry = lower(t[4]);
   if (format == "coordinate") {
@@ -120,7 +129,7 @@ Header parse_banner(LineReader& r) {
   } else if (format == "array") {
     h.coordinate = false;
   } else {
-    r.fail("unsupported format '" + std::string(t[2]) + "'");
+    r.fail("unsupported format " + text::quote(t[2]));
   }
   if (field == "real" || field == "double") {
     h.field = Field::real;
@@ -129,7 +138,7 @@ Header parse_banner(LineReader& r) {
   } else if (field == "pattern" && h.coordinate) {
     h.field = Field::pattern;
   } else {
-    r.fail("unsupported field '" + std::string(t[3]) + "' for format '" + format + "'");
+    r.fail("unsupported field " + text::quote(t[3]) + " for format " + text::quote(format));
   }
   if (symmetry == "general") {
     h.symmetry = Symmetry::general;
@@ -138,7 +147,7 @@ Header parse_banner(LineReader& r) {
   } else if (symmetry == "skew-symmetric") {
     h.symmetry = Symmetry::skew;
   } else {
-    r.fail("unsupported symmetry '" + std::string(t[4]) + "'");
+    r.fail("unsupported symmetry " + text::quote(t[4]));
   }
   return h;
 }
@@ -158,8 +167,8 @@ bool next_nonblank(LineReader& r, std::string& line) {
   return false;
 }
 
-Parsed parse(const std::string& path) {
-  LineReader r(path);
+Parsed parse(std::istream& in, const std::string& source, std::uint64_t input_bytes) {
+  LineReader r(in, source);
   const Header h = parse_banner(r);
   std::string line;
   do {  // comments and blank lines before the size line
@@ -175,17 +184,26 @@ Parsed parse(const std::string& path) {
   const long long m = parse_int(r, t[0], "row count");
   const long long n = parse_int(r, t[1], "column count");
   if (m < 0 || n < 0 || m > INT_MAX || n > INT_MAX) r.fail("matrix size out of range");
+  const std::uint64_t max_dim = max_dimension(input_bytes);
+  if (static_cast<std::uint64_t>(std::max(m, n)) > max_dim)
+    r.fail("matrix size " + std::to_string(m) + "x" + std::to_string(n) + " exceeds the limit " +
+           std::to_string(max_dim) + " = max(2^20, file size in bytes)");
   if (h.symmetry != Symmetry::general && m != n) r.fail("symmetric matrix must be square");
   const long long count = h.coordinate ? parse_int(r, t[2], "entry count") : array_count(h, m, n);
   const long long capacity = h.symmetry == Symmetry::general ? m * n : n * (n + 1) / 2;
   if (count < 0 || count > capacity) r.fail("entry count out of range");
   if (count * (h.symmetry == Symmetry::general ? 1 : 2) > INT_MAX) r.fail("too many entries");
+  if (!text::values_fit(static_cast<std::uint64_t>(count), input_bytes))
+    r.fail("entry count " + std::to_string(count) + " is more than the " + std::to_string(input_bytes) +
+           " bytes of the file can hold");
 
   Parsed p;
   p.rows = static_cast<Index>(m);
   p.cols = static_cast<Index>(n);
   p.size_line = r.line_no();
-  p.entries.reserve(static_cast<std::size_t>(std::min<long long>(count, 1 << 24)));
+  // Reserve only what the input has proved it can hold (values_fit above) or a little.
+  const long long provable = input_bytes == text::kUnknownSize ? 4096 : static_cast<long long>(input_bytes / 2);
+  p.entries.reserve(static_cast<std::size_t>(std::min({count, provable, 1LL << 24})));
   long long i = 0, j = 0;  // array files: next position, column-major
   if (!h.coordinate) i = h.symmetry == Symmetry::skew ? 1 : 0;
   for (long long k = 0; k < count; ++k) {
@@ -227,28 +245,43 @@ Parsed parse(const std::string& path) {
   if (next_nonblank(r, line)) {
     r.fail("more entries than the " + std::to_string(count) + " declared");
   }
+  // Sizes against the bytes actually read (an input of unknown size), before any allocation.
+  const std::uint64_t read_limit = max_dimension(r.bytes_read());
+  if (static_cast<std::uint64_t>(std::max(m, n)) > read_limit)
+    r.fail(p.size_line, "matrix size " + std::to_string(m) + "x" + std::to_string(n) + " exceeds the limit " +
+                            std::to_string(read_limit) + " = max(2^20, bytes read)");
   return p;
 }
 
 }  // namespace
 
-SparseMatrix read_matrix_market(const std::string& path) {
-  Parsed p = parse(path);
+SparseMatrix parse_matrix_market(std::istream& in, const std::string& source_name, std::uint64_t input_bytes) {
+  Parsed p = parse(in, source_name, input_bytes);
   SparseMatrix A(p.rows, p.cols);
   A.setFromTriplets(p.entries.begin(), p.entries.end());
   A.makeCompressed();
   return A;
 }
 
-Vector read_matrix_market_vector(const std::string& path) {
-  Parsed p = parse(path);
+Vector parse_matrix_market_vector(std::istream& in, const std::string& source_name, std::uint64_t input_bytes) {
+  Parsed p = parse(in, source_name, input_bytes);
   if (p.cols != 1) {
-    throw InputError(path + ":" + std::to_string(p.size_line) +
+    throw InputError(source_name + ":" + std::to_string(p.size_line) +
                      ": expected one column, found " + std::to_string(p.cols));
   }
   Vector v = Vector::Zero(p.rows);
   for (const Triplet& t : p.entries) v[t.row()] += t.value();
   return v;
+}
+
+SparseMatrix read_matrix_market(const std::string& path) {
+  std::ifstream in = open(path);
+  return parse_matrix_market(in, path, text::regular_file_size(path));
+}
+
+Vector read_matrix_market_vector(const std::string& path) {
+  std::ifstream in = open(path);
+  return parse_matrix_market_vector(in, path, text::regular_file_size(path));
 }
 
 }  // namespace lcprelax::sparse

@@ -17,6 +17,9 @@
 // L = the largest vertex distance from the first vertex):
 //   an edge shorter than 1e-9·L is degenerate, the area must exceed 1e-9·L², and every
 //   vertex must turn left by more than sin⁻¹(1e-9) (strict convexity).
+// Range (so that areas, L⁴ moments and contact margins stay far from overflow and
+// underflow, and the tests above never blame a wrong cause): every coordinate within
+// ±kMaxPolygonCoordinate and L ≥ kMinPolygonSize; outside it the message names the range.
 #include <lcprelax/world/world.hpp>
 
 #include <cmath>
@@ -29,6 +32,10 @@ namespace lcprelax {
 constexpr int kMaxPolygonVertices = 12;
 /// Smallest number of vertices of a polygon.
 constexpr int kMinPolygonVertices = 3;
+/// Largest |coordinate| of a vertex (m): 1e15 m (a light-week), far beyond any scene.
+constexpr double kMaxPolygonCoordinate = 1e15;
+/// Smallest size L of a polygon (m): 1e-12 m (a picometre).
+constexpr double kMinPolygonSize = 1e-12;
 
 /// Empty when `polygon` is a valid shape (3..12 finite vertices, counter-clockwise,
 /// strictly convex, simple, non-degenerate area); else a message naming the first problem,
@@ -44,8 +51,8 @@ struct MassProperties {
 };
 
 /// Mass properties of a uniform polygon of area density `density` (kg/m²).
-/// Throws InputError if the polygon is invalid (polygon_validation_error) or density is not
-/// finite and > 0.
+/// Throws InputError if the polygon is invalid (polygon_validation_error), density is not
+/// finite and > 0, or the mass or inertia overflows (an extreme density).
 MassProperties mass_properties(const Polygon& polygon, double density);
 
 /// Shifts the vertices of `polygon` so that its centroid C is at the origin and returns the

@@ -14,6 +14,11 @@
 // - every constraint row becomes a row of QpProblem::G with bounds [l, u] (A stays empty),
 //   in file order, so QpResult::z holds one multiplier per constraint row, in file order.
 // Malformed input throws lcprelax::InputError "FILE:LINE: message".
+// Limits (core/text_input.hpp, docs/formats.md): lines of at most 1 MiB, no NUL bytes (an
+// error naming the line and column), a leading UTF-8 BOM skipped, tokens echoed in messages
+// cut to 64 characters; at most 2^31 − 1 columns, rows and entries; a file without any
+// variable is an error ("no variables"). Memory grows with the lines read, never with a
+// declared size.
 #include <lcprelax/kkt/qp_problem.hpp>
 
 #include <iosfwd>

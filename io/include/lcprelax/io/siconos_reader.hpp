@@ -37,8 +37,15 @@
 // - Malformed input throws lcprelax::InputError "PATH:LINE: message" (non-numeric tokens,
 //   NaN/Inf or overflowing values, negative or zero sizes, truncated files, unknown storage
 //   type, dimension mismatches, out-of-range indices, dim ≠ 2, negative μ).
+// - Limits (core/text_input.hpp): lines of at most 1 MiB, no NUL bytes, a leading UTF-8 BOM
+//   skipped, echoed tokens cut to 64 characters; n (LCP) and 2nc (fc2d) at most 2^31 − 1;
+//   when the file size is known, a header whose sizes need more values (q, μ, a dense
+//   matrix's n² entries) than the file's bytes can hold is rejected right after the header,
+//   naming the size; counts use checked arithmetic.
+#include <lcprelax/core/text_input.hpp>
 #include <lcprelax/sparse/types.hpp>
 
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 
@@ -61,8 +68,12 @@ struct Fc2dData {
 LcpData read_siconos_lcp(const std::string& path);
 Fc2dData read_siconos_fc2d(const std::string& path);
 
-/// Parse from a stream; source_name is used in error messages.
-LcpData parse_siconos_lcp(std::istream& in, const std::string& source_name);
-Fc2dData parse_siconos_fc2d(std::istream& in, const std::string& source_name);
+/// Parse from a stream; source_name is used in error messages. `input_bytes`, when known,
+/// is the size of the input: a header declaring more values than that many bytes can hold
+/// is rejected before the values are read (read_siconos_* pass the size of a regular file).
+LcpData parse_siconos_lcp(std::istream& in, const std::string& source_name,
+                          std::uint64_t input_bytes = text::kUnknownSize);
+Fc2dData parse_siconos_fc2d(std::istream& in, const std::string& source_name,
+                            std::uint64_t input_bytes = text::kUnknownSize);
 
 }  // namespace lcprelax::io

@@ -129,6 +129,12 @@ struct QpSettings {
   /// When the iteration fails (stalls, diverges, hits max_iter), solve the auxiliary LPs of
   /// qp_infeasibility_lp.cpp that decide primal or dual infeasibility with a certificate.
   bool infeasibility_lps = true;
+  /// setup() refuses a P that is not positive semidefinite (InputError naming P: the QP is
+  /// nonconvex, and the interior point would end at a saddle or maximum that its residuals
+  /// cannot tell from a minimum) by one Cholesky factorization of the scaled P + 1e-9·I;
+  /// update() checks P's 2×2 principal minors only (allocation-free). kkt/qp_convexity.hpp.
+  /// false only for a caller that has run psd_error() itself (solve_lcp_ipm).
+  bool check_convexity = true;
 
   /// Empty when valid, else a message naming the first bad field.
   std::string validation_error() const;

@@ -33,7 +33,8 @@
 // are done once per thread; per-sample warm starts (Lemke basis; QP solution only if asked,
 // see BlockLossSettings) from the previous evaluation of the same sample. Evaluation of a
 // sample does not depend on which thread runs it, so 1 and N threads give
-// bitwise-identical results (batch.hpp).
+// bitwise-identical results (batch.hpp). The warm starts are saved in training checkpoints
+// (Objective::save_state, checkpoint.hpp), so a resumed run continues bit for bit.
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/learn/block_dataset.hpp>

@@ -7,6 +7,8 @@
 // Learning-rate schedule α_k = α / (1 + decay·k), k = steps taken so far.
 // Gradient clipping: g is scaled by clip_norm/‖g‖₂ where ‖g‖₂ > clip_norm.
 // A non-finite gradient throws std::runtime_error instead of poisoning ξ.
+// state()/restore() expose the moments and the step count for checkpoints (checkpoint.hpp):
+// an optimizer restored from another's state continues bit for bit as that one would.
 #include <lcprelax/sparse/types.hpp>
 
 #include <limits>
@@ -32,6 +34,14 @@ struct OptimizerSettings {
   std::string validation_error() const;
 };
 
+/// Everything an Optimizer carries between steps: the first moment m (sgd: the momentum
+/// buffer), the second moment s (adam; zeros for sgd) and the number of steps taken. m and
+/// s are empty before the first step.
+struct OptimizerState {
+  Vector m, s;
+  long steps = 0;
+};
+
 class Optimizer {
  public:
   /// Throws InputError on invalid settings.
@@ -39,6 +49,10 @@ class Optimizer {
   /// One update of ξ by the gradient ∂ℓ/∂ξ (sizes must match; state is sized on first use).
   void step(Vector& xi, const Vector& gradient);
   void reset();
+  OptimizerState state() const { return {m_, s_, steps_}; }
+  /// Continues from `state` (of an optimizer with the same settings); throws InputError if
+  /// m and s differ in size, steps < 0, or a moment is not finite.
+  void restore(const OptimizerState& state);
   long steps() const { return steps_; }
   double learning_rate() const;  ///< α_k for the next step
   const OptimizerSettings& settings() const { return settings_; }

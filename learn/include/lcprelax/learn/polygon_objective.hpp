@@ -10,7 +10,8 @@
 // from the previous evaluation of the same sample (a sample is never evaluated twice at
 // once, trainer.hpp). Warm starts depend only on the sample's own history, so the result
 // is the same for every thread count (tests/learn_polygon_threads_test.cpp). A sample
-// whose active set changed since its last evaluation starts cold.
+// whose active set changed since its last evaluation starts cold. The warm starts and active
+// sets are saved in training checkpoints (save_state, checkpoint.hpp).
 #include <lcprelax/learn/polygon_dataset.hpp>
 #include <lcprelax/learn/polygon_losses.hpp>
 #include <lcprelax/learn/trainer.hpp>
@@ -30,6 +31,8 @@ class PolygonObjective : public Objective {
   Index num_samples() const override;
   void prepare(const ParameterSet& theta, int threads) override;
   SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override;
+  void save_state(StateWriter& out) const override;
+  void load_state(StateReader& in) override;
 
   const PolygonLossSettings& settings() const { return settings_; }
   /// Time split summed over threads since construction or reset_times().

@@ -26,7 +26,8 @@
 // centred at 0 (counted in stats().cold_contacts), and its island gets
 // relaxed_cold_iterations proximal iterations (the biased centre 0 would otherwise enter
 // that epoch's gradient). relaxed_warm_center = false: every evaluation starts centred at 0
-// with the relaxed settings' proximal_iterations.
+// with the relaxed settings' proximal_iterations. The stored centres are saved in training
+// checkpoints (save_state, checkpoint.hpp); stats() count this object's evaluations only.
 // Contacts are found at the CURRENT θ (a learned vertex or ground moves them), then held
 // fixed while differentiating (a contact appearing or disappearing is a kink).
 #include <lcprelax/learn/scene_dataset.hpp>
@@ -78,6 +79,8 @@ class SceneObjective : public Objective {
   Index num_samples() const override;
   void prepare(const ParameterSet& theta, int threads) override;
   SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override;
+  void save_state(StateWriter& out) const override;
+  void load_state(StateReader& in) override;
 
   SceneObjectiveStats stats() const;
   void reset_stats();

@@ -43,9 +43,16 @@
 // evaluate_batch / evaluate_batch_distributed (sums in a fixed order, identical for every
 // thread count and on every rank), so the decision is identical on every rank and for
 // every thread count.
+//
+// Checkpoints (checkpoint.hpp): with TrainSettings::checkpoint set, the complete state of
+// the run (θ, optimizer moments, shuffle generator and order, convergence test, history,
+// the objective's warm starts) is written atomically after every epoch; with
+// TrainSettings::resume, train() continues from such a file and ends with θ bitwise equal
+// to that of a run that was never interrupted (with any thread count).
 #include <lcprelax/learn/batch.hpp>
 #include <lcprelax/learn/optimizer.hpp>
 #include <lcprelax/learn/parameters.hpp>
+#include <lcprelax/learn/state_stream.hpp>
 
 #include <cstdint>
 #include <functional>
@@ -66,6 +73,12 @@ class Objective {
   /// per-thread workspaces for the current θ.
   virtual void prepare(const ParameterSet& /*theta*/, int /*threads*/) {}
   virtual SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) = 0;
+  /// State kept between evaluations that later results depend on (per-sample warm starts,
+  /// proximal centres), for checkpoints: save_state() appends it to `out`, load_state()
+  /// reads back exactly what save_state() wrote (failing through `in`, InputError, when it
+  /// does not fit this objective). An objective without such state keeps the defaults.
+  virtual void save_state(StateWriter& /*out*/) const {}
+  virtual void load_state(StateReader& /*in*/) {}
 };
 
 struct TrainSettings {
@@ -92,6 +105,17 @@ struct TrainSettings {
   double rel_loss_tol = 1e-9;     ///< finite, ≥ 0
   double grad_tol = 1e-7;         ///< finite, ≥ 0
   int patience = 5;               ///< ≥ 0; 0 switches the test off (exactly `epochs` epochs)
+  /// Checkpoint file (checkpoint.hpp): if non-empty, the run's state is written to it
+  /// atomically after every epoch (under MPI each rank writes its own file,
+  /// checkpoint_path_for_rank). Checked for writability before the first epoch.
+  std::string checkpoint;
+  /// If non-empty, continue the run saved in this checkpoint (its identity must match this
+  /// call's, checkpoint.hpp); `epochs` stays the cap counted from the run's start and must
+  /// be ≥ the epochs already done. The CSV log is rewritten from the saved history.
+  std::string resume;
+  /// The caller's description of the problem (data, model, loss settings), stored in the
+  /// checkpoint and compared on resume.
+  std::string problem;
   std::string validation_error() const;  ///< empty if valid, else a message naming the first bad field
 };
 
@@ -129,8 +153,9 @@ struct TrainResult {
 BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const std::vector<Index>& samples,
                           int threads, bool distributed = false);
 
-/// Trains `theta` in place. Throws InputError on invalid settings, empty training set or
-/// out-of-range sample indices.
+/// Trains `theta` in place. Throws InputError on invalid settings, empty training set,
+/// out-of-range sample indices, an unwritable checkpoint, or a resume checkpoint that is
+/// unreadable, corrupt or of another run.
 TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<Index>& training,
                   const std::vector<Index>& validation, const TrainSettings& settings);
 

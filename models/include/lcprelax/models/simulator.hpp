@@ -108,10 +108,16 @@ double speculative_contact_margin(const World& world, const SimulatorSettings& s
 StepContacts find_step_contacts(const World& world, const SimulatorSettings& settings,
                                 const std::vector<Vec3>& applied = {});
 
+/// Largest |position| (m), |angle| (rad), |velocity| (m/s), |angular velocity| (rad/s) and
+/// |gravity| (m/s²) a Simulator accepts: 1e15, far from where the step's derived quantities
+/// (contact margins, positions after a step) overflow; beyond it the field is named.
+constexpr double kMaxSceneMagnitude = 1e15;
+
 class Simulator {
  public:
   /// Throws InputError on invalid settings (validation_error()) or bodies (non-positive
-  /// mass or inertia of a dynamic body, non-finite pose or velocity).
+  /// mass or inertia of a dynamic body, non-finite pose or velocity, a value beyond
+  /// kMaxSceneMagnitude, naming the body's field).
   explicit Simulator(World world, SimulatorSettings settings = {});
 
   /// Advances one step; applied (fx, fy, torque) per body (N, N·m) may be empty.
@@ -128,6 +134,7 @@ class Simulator {
   double total_energy() const { return kinetic_energy() + potential_energy(); }
 
  private:
+  void check_extreme_values() const;  // the kMaxSceneMagnitude checks of the constructor
   using ContactKey = std::array<int, 5>;
   struct WarmEntry {
     bool normal = false, plus = false, minus = false, slide = false;

@@ -47,12 +47,19 @@
 //   "duplicate key 'mass' in bodies[1]", "invalid JSON: ..." (with nlohmann's position).
 // JSON has no NaN or Inf; numbers written as strings ("nan") are type errors, and numbers
 // that overflow a double are rejected by the parser.
+// Limits: load_scene reads at most kMaxSceneBytes (256 MiB; a larger file or a device such as
+// /dev/zero is an InputError); a leading UTF-8 BOM is skipped; keys and strings echoed in
+// messages are cut to 64 characters and messages to 1 KiB (core/text_input.hpp).
 #include <lcprelax/scenes/scene.hpp>
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
 namespace lcprelax {
+
+/// Largest scene file load_scene reads: 256 MiB.
+inline constexpr std::size_t kMaxSceneBytes = std::size_t{256} << 20;
 
 /// Parses scene JSON text (the schema above). Throws InputError.
 Scene parse_scene(std::string_view json_text);

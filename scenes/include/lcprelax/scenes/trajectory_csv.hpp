@@ -26,7 +26,9 @@
 //   NaN/Inf, no empty cells), step and body integers;
 // - consecutive rows with the same step form one frame; steps strictly increase; within a
 //   frame the bodies are 0, 1, 2, ... in order and the time is the same in every row;
-// - every frame has as many bodies as the first one.
+// - every frame has as many bodies as the first one;
+// - limits (core/text_input.hpp): lines of at most 1 MiB, no NUL bytes, a leading UTF-8 BOM
+//   skipped, cells echoed in messages cut to 64 characters.
 #include <lcprelax/world/world.hpp>
 
 #include <fstream>
