@@ -128,8 +128,10 @@ void check_gradient(LossMethod method, ContactModel data_model, double tolerance
 }
 
 // A settled pile without pushes sticks everywhere; from μ₀ = 10× the truth every contact
-// still sticks, the LCP's basis does not change with μ, and the hard loss's ∂ℓ/∂μ is exactly
-// zero (the weakness the relaxed loss removes: its ∂ℓ/∂μ is not zero there).
+// still sticks, the LCP's basis does not change with μ, and the hard loss's ∂ℓ/∂μ is zero
+// (the weakness the relaxed loss removes: its ∂ℓ/∂μ is not zero there). Zero up to the
+// roundoff of the final basis' solution, which Lemke returns unclipped where clipping
+// would move w more (6.7e-31 here): required below 1e-12 of the relaxed loss's.
 TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
   LearningPileOptions po;
   po.bodies = 20;
@@ -141,6 +143,7 @@ TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
   const SceneParameterMap map(data.scene.world, SceneParameterSettings{});
   ParameterSet theta = map.parameters(data.scene.world);
   theta.set_value("mu", 10 * theta.value("mu"));
+  double hard_gradient = 0.0;
   for (LossMethod method : {LossMethod::hard, LossMethod::relaxed}) {
     SceneLossSettings ls;
     ls.method = method;
@@ -152,8 +155,12 @@ TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
       ASSERT_TRUE(r.ok) << r.message;
       mu_gradient += std::abs(r.gradient(0));
     }
-    if (method == LossMethod::hard) EXPECT_EQ(mu_gradient, 0.0);
-    else EXPECT_GT(mu_gradient, 0.0);
+    if (method == LossMethod::hard) {
+      hard_gradient = mu_gradient;
+    } else {
+      EXPECT_GT(mu_gradient, 0.0);
+      EXPECT_LE(hard_gradient, 1e-12 * mu_gradient);
+    }
   }
 }
 

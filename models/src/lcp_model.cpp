@@ -71,7 +71,13 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   LemkeSettings plain = settings;
   plain.covering_retries = 0;
   plain.regularization_retries = 0;
-  LemkeSettings warm_only = plain;
+  LemkeSettings exact = plain;  // attempt 1 fails fast (see kLcpExactPivotsPerUnknown)
+  const long exact_cap = kLcpExactPivotsPerUnknown * (n + 1);
+  exact.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, exact_cap) : exact_cap;
+  LemkeSettings polish = plain;  // from the perturbed solution's basis: a short crash path
+  polish.crash_start = true;
+  polish.max_pivots = std::max<long>(1, n / 10);
+  LemkeSettings warm_only = plain;  // the warm basis if it is feasible; a cold start stops at once
   warm_only.max_pivots = 1;
   std::vector<LemkeSolver> solvers;  // kept alive: r points into the accepted one
   solvers.reserve(2 * kLcpPerturbationSeeds + 3);
@@ -86,21 +92,31 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     return res;
   };
   auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
-  // 1. Exact: the warm basis on q, else cold.
-  r = &attempt(plain, lcp.q, has_warm ? &warm : nullptr);
-  // 2. Perturbed q + δu (warm basis, else cold), polished on q.
-  bool perturbed = false;
+  // 1. The warm basis on q where it is feasible (a crash path from the previous step's
+  //    basis rarely pays: on a 200-body pile every one hit a cap of n/10 pivots).
+  if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
+  // 2. Perturbed q + δu from the all-w basis, polished on q by a short crash path from its
+  //    solution's basis.
+  const LcpResult* inexact = nullptr;
   double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
-  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r); ++seed, delta *= 10.0) {
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
     Vector q = lcp.q;
     for (Index i = 0; i < n; ++i) q(i) += delta * perturbation_weight(i, seed);
-    const LcpResult& rp = attempt(plain, q, has_warm ? &warm : nullptr);
+    const LcpResult& rp = attempt(plain, q, nullptr);
     if (!solved(&rp)) continue;
-    const LcpResult& polished = attempt(warm_only, lcp.q, &rp.z_basic);
-    perturbed = !solved(&polished);
-    r = perturbed ? &rp : &polished;
+    const LcpResult& polished = attempt(polish, lcp.q, &rp.z_basic);
+    if (solved(&polished)) r = &polished;
+    else inexact = &rp;
   }
-  // 3. The caller's settings (covering-vector and M + εI retries).
+  // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
+  //    basis, or cycle: capped), else the perturbed solution.
+  bool perturbed = false;
+  if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
+  if (!solved(r) && inexact) {
+    r = inexact;
+    perturbed = true;
+  }
+  // 4. The caller's settings (covering-vector and M + εI retries).
   if (!solved(r)) r = &attempt(settings, lcp.q, nullptr);
 
   ContactSolution out;
