@@ -185,7 +185,9 @@ bool same_bits(const SparseMatrix& a, const SparseMatrix& b) {
 }
 
 bool same_bits(const Vector& a, const Vector& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+  // (memcmp's pointers must not be null, even for 0 bytes: empty vectors have none)
+  return a.size() == b.size() &&
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0);
 }
 
 void expect_same_bits(const RelaxedLcpResult& a, const RelaxedLcpResult& b, const std::string& what) {
