@@ -101,7 +101,9 @@ nlohmann::json killed_and_resumed(const std::string& args, const std::vector<Kil
     ++kills;
     // Whatever the instant of the kill, the checkpoint is absent or complete and valid.
     int epoch = 0;
-    if (fs::exists(checkpoint)) EXPECT_NO_THROW(epoch = learn::read_checkpoint(checkpoint).epoch);
+    if (fs::exists(checkpoint)) {
+      EXPECT_NO_THROW(epoch = learn::read_checkpoint(checkpoint).epoch);
+    }
     epochs_at_kills += " " + std::to_string(epoch);
   }
   std::cout << "[          ] killed after epochs" << epochs_at_kills << " (0: before the first checkpoint)\n";

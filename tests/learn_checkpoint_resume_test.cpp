@@ -127,6 +127,17 @@ TEST(LearnCheckpointResume, BlockSgdFullBatchWithConvergenceTest) {
   expect_resume_is_bitwise(block_problem(BlockMethod::relaxed), ts, 60, {5, 30}, 1, true);
 }
 
+TEST(LearnCheckpointResume, BlockLbfgsKeepsItsPairsAcrossResumes) {
+  // L-BFGS stores its (s, y) pairs in the optimizer state: a resumed run must rebuild the
+  // same quasi-Newton directions, so θ after the cap is bitwise that of one run.
+  TrainSettings ts;
+  ts.optimizer.kind = OptimizerKind::lbfgs;
+  ts.optimizer.learning_rate = 0.1;
+  ts.optimizer.memory = 3;  // pairs dropped and replaced across the resumes
+  ts.patience = 0;
+  expect_resume_is_bitwise(block_problem(BlockMethod::relaxed), ts, 12, {4, 9}, 1);
+}
+
 Problem polygon_problem(PolygonMethod method) {
   const PolygonModel truth = reference_polygon_model();
   PolygonDataSettings ds;

@@ -55,6 +55,31 @@ TEST(CliLearnSceneOptions, LearnSelectsKindsAndSceneFilesWork) {
   EXPECT_EQ(j["bodies"], 3);
 }
 
+void expect_bad_input(const std::string& args, const std::string& needle) ;
+
+TEST(CliLearnSceneOptions, InitFromContinuesAnEarlierRunWithLbfgs) {
+  // The "learned" map of one run's JSON is the next run's "initial" map, bit for bit, and a
+  // full-batch L-BFGS continuation of it does not raise the training loss.
+  const std::string first = temp_path("scene_first.json");
+  const CliRun a = run_cli("learn scene --scene '" + kStack + "' --steps 20 --learn mu,mass --epochs 3 --json");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  { std::ofstream(first) << a.out; }
+  const CliRun b = run_cli("learn scene --scene '" + kStack + "' --steps 20 --learn mu,mass --epochs 5 --optimizer lbfgs" +
+                           " --init-from '" + first + "' --json");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(jb["initial"], ja["learned"]);
+  EXPECT_LE(jb["final_loss"].get<double>(), ja["final_loss"].get<double>());
+  // Another parameter selection does not fit the file.
+  expect_bad_input("learn scene --scene '" + kStack + "' --steps 20 --learn mu --epochs 1 --init-from '" + first +
+                       "' --json",
+                   "learned has");
+  expect_bad_input("learn scene --scene '" + kStack + "' --init-from /nonexistent.json --json", "--init-from");
+  // L-BFGS needs the whole training set per step.
+  expect_bad_input("learn scene --scene '" + kStack + "' --steps 20 --optimizer lbfgs --batch 2 --json", "lbfgs");
+  std::filesystem::remove(first);
+}
+
 void expect_bad_input(const std::string& args, const std::string& needle) {
   const CliRun r = run_cli(args);
   EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err << r.out;

@@ -101,7 +101,8 @@ CheckpointIdentity checkpoint_identity(const Objective& objective, const Paramet
   id.emplace_back("optimizer", std::string(to_string(o.kind)) + " learning_rate " + hex_double(o.learning_rate) +
                                    " momentum " + hex_double(o.momentum) + " beta1 " + hex_double(o.beta1) + " beta2 " +
                                    hex_double(o.beta2) + " epsilon " + hex_double(o.epsilon) + " decay " +
-                                   hex_double(o.decay) + " clip_norm " + hex_double(o.clip_norm));
+                                   hex_double(o.decay) + " clip_norm " + hex_double(o.clip_norm) +
+                                   (o.kind == OptimizerKind::lbfgs ? " memory " + std::to_string(o.memory) : ""));
   id.emplace_back("convergence test", "rel_loss_tol " + hex_double(settings.rel_loss_tol) + " grad_tol " +
                                           hex_double(settings.grad_tol) + " patience " + std::to_string(settings.patience));
   id.emplace_back("MPI ranks", std::to_string(settings.distributed ? mpi::mpi_size() : 1));
@@ -215,7 +216,9 @@ TrainCheckpoint decode_checkpoint(const std::string& bytes, const std::string& p
   c.objective_state = in.get_string();
   in.expect_end();
   if (!c.theta.allFinite()) in.fail("a parameter value is not finite");
-  if (c.optimizer.m.size() != c.optimizer.s.size() || (c.optimizer.m.size() != 0 && c.optimizer.m.size() != c.theta.size()))
+  // sgd/adam: one moment entry per parameter; lbfgs: the stored pairs, a multiple of it.
+  if (c.optimizer.m.size() != c.optimizer.s.size() ||
+      (c.optimizer.m.size() != 0 && (c.theta.size() == 0 || c.optimizer.m.size() % c.theta.size() != 0)))
     in.fail("optimizer moments of " + std::to_string(c.optimizer.m.size()) + " and " +
             std::to_string(c.optimizer.s.size()) + " entries for " + std::to_string(c.theta.size()) + " parameters");
   return c;

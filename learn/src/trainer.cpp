@@ -1,5 +1,6 @@
 // Mini-batch training loop with checkpoints (trainer.hpp, checkpoint.hpp).
 #include <lcprelax/learn/trainer.hpp>
+#include "lbfgs_line_search.hpp"
 #include <lcprelax/learn/checkpoint.hpp>
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
@@ -180,14 +181,20 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
     return seconds_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
   const bool full_batch = batch >= order.size();
+  const bool lbfgs = settings.optimizer.kind == OptimizerKind::lbfgs;
+  if (lbfgs && !full_batch)
+    throw InputError("optimizer lbfgs needs the whole training set per step (batch 0 or at least " +
+                     std::to_string(order.size()) + ", not " + std::to_string(settings.batch) + ")");
+  bool line_search_failed = false;
   const bool test_on = settings.patience > 0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (int epoch = first_epoch; epoch <= settings.epochs && !out.converged; ++epoch) {
+  for (int epoch = first_epoch; epoch <= settings.epochs && !out.converged && !line_search_failed; ++epoch) {
     if (settings.shuffle) shuffle(order, loop.rng);
     EpochRecord rec;
     rec.epoch = epoch;
     double loss_sum = 0.0;
     long loss_count = 0;
+    int trial_failures = 0;
     for (std::size_t b0 = 0; b0 < order.size(); b0 += batch) {
       const std::vector<Index> samples(order.begin() + static_cast<std::ptrdiff_t>(b0),
                                        order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), b0 + batch)));
@@ -200,6 +207,15 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
       loop.evaluated_total += r.evaluated;
       const Vector g = theta.chain_gradient(r.gradient);
       rec.gradient_norm = g.norm();
+      if (lbfgs) {  // one quasi-Newton iteration with its line search (lbfgs_line_search.hpp)
+        const detail::LbfgsIteration it = detail::lbfgs_iteration(objective, theta, samples, settings.threads,
+                                                                  settings.distributed, optimizer, r.loss, r.evaluated, g);
+        loop.evaluated_total += it.evaluated;
+        trial_failures += it.failed;
+        if (it.failed > 0 && out.first_failure.empty()) out.first_failure = it.first_failure;
+        line_search_failed = !it.accepted && it.steepest;
+        continue;
+      }
       Vector xi = theta.free();
       optimizer.step(xi, g);
       theta.set_free(xi);
@@ -232,7 +248,7 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
     rec.theta = theta.values();
     rec.seconds = elapsed();
     rec.samples_per_second = rec.seconds > 0.0 ? static_cast<double>(loop.evaluated_total) / rec.seconds : 0.0;
-    out.failed += rec.failed;
+    out.failed += rec.failed + trial_failures;
     if (settings.progress && writer) {
       const double eta = rec.seconds / epoch * (settings.epochs - epoch);
       std::fprintf(stderr, "\repoch %d/%d  loss %.6g  val %.6g  %.0f samples/s  ETA %.0f s ", epoch, settings.epochs,
@@ -249,6 +265,10 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   if (out.converged)
     std::snprintf(reason, sizeof reason, "converged: relative loss change <= %g and gradient norm <= %g for %d epochs",
                   settings.rel_loss_tol, settings.grad_tol, settings.patience);
+  else if (line_search_failed)
+    std::snprintf(reason, sizeof reason,
+                  "lbfgs line search found no decrease along -gradient after %d epochs (a kink or the loss's noise floor)",
+                  static_cast<int>(out.history.size()));
   else
     std::snprintf(reason, sizeof reason, "epoch cap reached (%d epochs%s)", settings.epochs,
                   test_on ? "" : ", convergence test off");

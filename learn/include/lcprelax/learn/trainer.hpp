@@ -16,6 +16,14 @@
 // - A sample that fails to evaluate is skipped and counted (EpochRecord::failed); a batch
 //   in which every sample fails leaves the parameters unchanged.
 //
+// L-BFGS (OptimizerKind::lbfgs, full batch only, else InputError): an epoch is one
+// quasi-Newton iteration — the training set's loss and gradient at the epoch's θ, then a
+// backtracking line search whose trial points are further evaluations of the whole set
+// (details in learn/src/lbfgs_line_search.hpp). EpochRecord's loss and gradient
+// are those at the epoch's starting θ; samples_per_second counts the trial evaluations too.
+// A line search that finds no decrease even along −g ends the run ("lbfgs line search found
+// no decrease ...", converged = false): θ is then at a kink or at the loss's noise floor.
+//
 // Stopping: TrainSettings::epochs is a cap; a run ends earlier once it has converged.
 // After epoch k the trainer has C_k and g_k, the mean loss and the mean gradient ∂ℓ/∂ξ over
 // the WHOLE training set at one θ (EpochRecord::full_loss, full_gradient_norm = ‖g_k‖₂):
@@ -143,7 +151,8 @@ struct TrainResult {
   std::string first_failure;
   bool converged = false;         ///< the convergence test held for `patience` epochs
   /// Why the run ended: "converged: relative loss change <= 1e-09 and gradient norm <= 1e-07
-  /// for 5 epochs", "epoch cap reached (N epochs)" or, with patience = 0, "epoch cap reached
+  /// for 5 epochs", "epoch cap reached (N epochs)", "lbfgs line search found no decrease
+  /// along -gradient after N epochs (...)" or, with patience = 0, "epoch cap reached
   /// (N epochs, convergence test off)".
   std::string stop_reason;
 };
