@@ -34,6 +34,8 @@ else
   echo "Box2D not built: pile peers skipped" >&2
 fi
 run "$B/run_stiff_report" --csv "$R/stiff_report.csv" > "$R/stiff_report.md"
+run "$B/run_fragility" --csv "$R/fragility.csv" > "$R/fragility.txt"
+run "$B/run_softening" --csv "$R/softening.csv" > "$R/softening.txt"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
 run "$B/bench_learn_polygon" --benchmark_min_time=0.5 > "$R/learn_polygon.txt"
 run "$B/run_learn_throughput" --threads 1,2 --csv "$R/learn_throughput.csv" > "$R/learn_throughput.txt"

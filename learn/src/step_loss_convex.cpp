@@ -67,6 +67,7 @@ std::string ConvexStepLossSettings::validation_error() const {
   if (!qp_error.empty()) return "qp." + qp_error;
   if (!(rho >= 0.0) || !std::isfinite(rho)) return "rho: must be finite and >= 0";
   if (!(deviation >= 0.0) || !std::isfinite(deviation)) return "deviation: must be finite and >= 0";
+  if (std::string e = softening.validation_error(); !e.empty()) return "softening." + e;
   if (!(phase1_regularization >= 0.0) || !std::isfinite(phase1_regularization))
     return "phase1_regularization: must be finite and >= 0";
   return {};
@@ -92,8 +93,14 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   // No contact approaching in either of phase 1's terms: λ = 0 (locally constant).
   const Vector gap = s.phi.cwiseMax(0.0) / dt;
   const Vector bn = s.Jn * s.v_star + gap;
-  const Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap;
-  if (nc == 0 || (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0)) {
+  // The softening's target velocity lowers both phases' λn terms (0 for exp_phi).
+  const NormalSofteningTerms soft = normal_softening_terms(settings.softening, rho, dt, s.phi, s.Jn * s.v_star);
+  const NormalSofteningTerms soft1 = phase1_softening_terms(soft);  // max(v_ref, 0)
+  const bool with_ref = (soft1.v_ref.array() != 0.0).any();
+  Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap;
+  if (with_ref) q1 -= soft1.v_ref;
+  if (nc == 0 ||
+      (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0 && (!with_ref || (bn - soft1.v_ref).minCoeff() >= 0.0))) {
     r.status = ContactStatus::solved;
     r.v_next = s.v_star;
     r.loss = (s.v_star - target).squaredNorm();
@@ -106,8 +113,8 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   std::unique_ptr<detail::ConvexLossData> data1_own;
   if (w1 != w) data1_own = std::make_unique<detail::ConvexLossData>(s, target, dt, w1, lifted);
   const detail::ConvexLossData& data1 = data1_own ? *data1_own : data;
-  const detail::ConvexLossQp p1 = detail::convex_loss_phase1(data1, settings.phase1_regularization);
-  detail::ConvexLossQp p2 = detail::convex_loss_phase2(data, rho);
+  const detail::ConvexLossQp p1 = detail::convex_loss_phase1(data1, settings.phase1_regularization, soft1);
+  detail::ConvexLossQp p2 = detail::convex_loss_phase2(data, soft);
   t.assembly = detail::since(t0);
 
   t0 = detail::Clock::now();

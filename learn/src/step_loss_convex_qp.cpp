@@ -55,10 +55,11 @@ ConvexLossData::ConvexLossData(const ContactSystem& system, const Vector& target
   }
 }
 
-ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r) {
+ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r, const NormalSofteningTerms& softening) {
   const ContactSystem& s = d.s;
   const Index nc = d.nc, nv = d.nv;
   ConvexLossQp out;
+  out.softening = softening;
   std::vector<Triplet> g;
   if (!d.lifted) {
     out.problem = QpProblem(nc);
@@ -85,27 +86,30 @@ ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r) {
     p.u = Vector::Constant(nc, kInf);
   }
   p.q.tail(nc) = s.Jn * d.c + d.gap;
+  if ((softening.v_ref.array() != 0.0).any()) p.q.tail(nc) -= softening.v_ref;
   p.xl.tail(nc).setZero();
   return out;
 }
 
-ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho) {
+ConvexLossQp convex_loss_phase2(const ConvexLossData& d, const NormalSofteningTerms& softening) {
   const ContactSystem& s = d.s;
   const Index nc = d.nc, nf = d.nf, nv = d.nv;
   const Index ln = d.lifted ? nv : 0, lt = ln + nc, n = lt + nf, m = nc + 1 + 2 * nf;
   ConvexLossQp out;
+  out.softening = softening;
+  const NormalSofteningTerms& soft = out.softening;
   out.problem = QpProblem(n);
   out.lambda_offset = ln;
   QpProblem& p = out.problem;
   if (d.lifted) {
     std::vector<Triplet> t;
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
-    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i));
+    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, soft.g(i) * d.w_nn(i));
     p.P = from_triplets(n, n, t);
     lifted_momentum_equality(s, /*friction=*/true, p);
   } else {
     SparseMatrix P = (1.0 + d.w) * d.W;
-    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i);
+    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += soft.g(i) * d.w_nn(i);
     p.P = upper_triangle(P);
   }
   std::vector<Triplet> g;
@@ -120,6 +124,7 @@ ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho) {
     p.l(nc + 2 + 2 * f) = 0.0;
   }
   p.q.segment(ln, nc) = s.Jn * d.c;
+  if ((soft.v_ref.array() != 0.0).any()) p.q.segment(ln, nc) -= soft.v_ref;
   p.q.segment(lt, nf) = s.Jt * d.c;
   p.xl.segment(ln, nc).setZero();
   return out;
@@ -128,7 +133,7 @@ ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho) {
 ConvexLossPullback::ConvexLossPullback(const ConvexLossData& data)
     : d(data), Jn_bar(zero_like(data.s.Jn)), Jt_bar(zero_like(data.s.Jt)) {
   if (!d.lifted) W_bar = zero_like(d.W);
-  bn_bar = gap_bar = w_nn_bar = phi_bar = Vector::Zero(d.nc);
+  bn_bar = gap_bar = w_nn_bar = phi_bar = vn_bar = Vector::Zero(d.nc);
   mu_bar = Vector::Zero(d.nf);
   c_bar = minv_bar = Vector::Zero(d.nv);
 }
@@ -157,13 +162,19 @@ double ConvexLossPullback::add_phase(int phase, const ConvexLossQp& qp, const Qp
   add_outer(q_bar, d.c);
   c_bar += s.Jn.transpose() * q_bar.head(nc) + s.Jt.transpose() * q_bar.tail(nf);
   if (phase == 1) gap_bar += q_bar.head(nc);
+  // Both phases' λn terms subtract the softening's v_ref(φ, vn) (normal_softening.hpp).
+  if (qp.softening.v_ref.size() == nc)
+    for (Index i = 0; i < nc; ++i) {
+      const double vref_bar = -q_bar(i);
+      phi_bar(i) += vref_bar * qp.softening.dvref_dphi(i);
+      vn_bar(i) += vref_bar * qp.softening.dvref_dvn(i);
+    }
   // l = −bn on the contact rows.
   if (g.dl.size() >= nc) bn_bar -= g.dl.head(nc);
-  // P: (1+w)W or (1+w)M, and the ρ diagonal on λn (phase 2).
+  // P: (1+w)W or (1+w)M, and the softening's diagonal r_i = g(φ_i)·Wnn_i on λn (phase 2).
   auto add_rho = [&](Index i, double v) {
-    const double ex = 2.0 * rho * std::exp(s.phi(i));
-    phi_bar(i) += v * ex * d.w_nn(i);
-    w_nn_bar(i) += v * ex;
+    phi_bar(i) += v * qp.softening.dg_dphi(i) * d.w_nn(i);
+    w_nn_bar(i) += v * qp.softening.g(i);
   };
   for (Index j = 0; j < g.dP.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(g.dP, j); it; ++it) {
@@ -235,6 +246,11 @@ void ConvexLossPullback::finish(ContactSystemCotangent& out) {
   Vector a = Vector::Zero(d.nc + d.nf);
   a.head(d.nc) = bn_bar;
   add_outer(a, s.v_star);
+  if ((vn_bar.array() != 0.0).any()) {  // vn = Jn v* (the softening's target velocity)
+    a.head(d.nc) = vn_bar;
+    add_outer(a, s.v_star);
+    out.v_star += s.Jn.transpose() * vn_bar;
+  }
   out.v_star += s.Jn.transpose() * bn_bar + (1.0 + d.w) * c_bar;
   gap_bar += bn_bar;
   for (Index i = 0; i < d.nc; ++i)

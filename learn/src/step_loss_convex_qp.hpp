@@ -7,6 +7,7 @@
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/models/contact_system_gradient.hpp>
+#include <lcprelax/models/normal_softening.hpp>
 
 namespace lcprelax::learn::detail {
 
@@ -29,11 +30,14 @@ struct ConvexLossData {
 struct ConvexLossQp {
   QpProblem problem;
   Index lambda_offset = 0;
+  NormalSofteningTerms softening;  ///< the normal softening's terms (phase 1 uses v_ref only)
 };
 
-ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r);
-/// Phase 2 with u(nc) = +∞ (the caller sets the κ bound).
-ConvexLossQp convex_loss_phase2(const ConvexLossData& d, double rho);
+/// Phase 1 with regularization r; its λn term is lowered by the softening's v_ref too.
+ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r, const NormalSofteningTerms& softening);
+/// Phase 2 with u(nc) = +∞ (the caller sets the κ bound), softened by `softening`
+/// (models/normal_softening.hpp: ½ Σ g_i Wnn_i λn_i² − λnᵀ v_ref).
+ConvexLossQp convex_loss_phase2(const ConvexLossData& d, const NormalSofteningTerms& softening);
 
 /// Cotangents of the intermediate quantities, accumulated over both phases, then pulled
 /// back to the island data by finish().
@@ -50,6 +54,7 @@ struct ConvexLossPullback {
   SparseMatrix Jn_bar, Jt_bar;  ///< on Jn's and Jt's patterns
   SparseMatrix W_bar;           ///< dual: on W's pattern (not symmetric)
   Vector bn_bar, gap_bar, c_bar, w_nn_bar, phi_bar, mu_bar, minv_bar;
+  Vector vn_bar;  ///< of vn = Jn v* in the softening's target velocity
 
  private:
   void add_J(Index row, Index col, double v);

@@ -1,6 +1,7 @@
 // The convex two-phase contact model (contact_step.hpp), solved by the interior-point QP.
 #include "convex_model_qp.hpp"
 
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/models/contact_step.hpp>
 
@@ -22,15 +23,23 @@ constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
 }  // namespace
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
-                                   ConvexFormulation formulation) {
+                                   ConvexFormulation formulation, const NormalSofteningSettings& softening) {
+  if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
   const Index nc = s.num_contacts(), nf = s.num_friction();
   ContactSolution out;
 
-  // No contact is approaching (b ≥ 0): λ = 0 solves both phases exactly (phase 1's optimum
-  // is 0, then κ = 0 forces λn = 0 and |λt| ≤ μλn forces λt = 0); an interior point has no
-  // interior to work in there, so this case is answered directly.
-  const Vector bn = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
-  if (nc == 0 || bn.minCoeff() >= 0.0) {
+  // No contact is approaching (b ≥ 0, and b − max(v_ref, 0) ≥ 0): λ = 0 solves both
+  // phases exactly (phase 1's optimum is 0, then κ = 0 forces λn = 0 and |λt| ≤ μλn forces
+  // λt = 0); an interior point has no interior to work in there, so this case is answered
+  // directly.
+  const Vector vn = s.Jn * s.v_star;
+  const Vector bn = vn + s.phi.cwiseMax(0.0) / dt;
+  // The softening's target velocity v_ref (normal_softening.hpp) lowers phase 2's linear
+  // term on λn, and max(v_ref, 0) phase 1's; 0 for exp_phi.
+  const NormalSofteningTerms soft = normal_softening_terms(softening, rho, dt, s.phi, vn);
+  const NormalSofteningTerms soft1 = phase1_softening_terms(soft);
+  const bool with_ref = (soft1.v_ref.array() != 0.0).any();
+  if (nc == 0 || (bn.minCoeff() >= 0.0 && (!with_ref || (bn - soft1.v_ref).minCoeff() >= 0.0))) {
     out.status = ContactStatus::solved;
     out.lambda_n = Vector::Zero(nc);
     out.lambda_t = Vector::Zero(nf);
@@ -40,7 +49,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   const detail::ConvexModelData data(s, bn, formulation);
 
   // Phase 1: frictionless normal impulses.
-  const detail::ConvexPhaseQp p1 = detail::convex_phase1_qp(data);
+  const detail::ConvexPhaseQp p1 = detail::convex_phase1_qp(data, soft1);
   QpSolver qp1(settings);
   qp1.setup(p1.problem);
   const QpResult& r1 = qp1.solve();
@@ -56,8 +65,8 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // interior point no interior (measured: "no progress" failures on 1-2 contact islands).
   const double kappa = lambda1.sum();
 
-  // Phase 2: friction, bounded by κ, with the ρ·diag(exp(φ))·diag(Wnn) term on λn.
-  detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, rho);
+  // Phase 2: friction, bounded by κ, with the normal softening term on λn.
+  detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
   QpResult r2;
   QpSolver qp2(settings);
   for (double slack : kKappaSlack) {

@@ -54,7 +54,7 @@ ConvexModelData::ConvexModelData(const ContactSystem& system, const Vector& bn_i
   if (form == ConvexFormulation::dual) W = delassus(s);
 }
 
-ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d) {
+ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& soft) {
   const ContactSystem& s = d.s;
   const Index nc = s.num_contacts(), nv = s.num_dofs();
   ConvexPhaseQp out;
@@ -71,11 +71,12 @@ ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d) {
   }
   QpProblem& p = out.problem;
   p.q.tail(nc) = d.bn;
+  if ((soft.v_ref.array() != 0.0).any()) p.q.tail(nc) -= soft.v_ref;
   p.xl.tail(nc).setZero();
   return out;
 }
 
-ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, double rho) {
+ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& soft) {
   const ContactSystem& s = d.s;
   const Index nc = s.num_contacts(), nf = s.num_friction(), nv = s.num_dofs();
   const bool lifted = d.form == ConvexFormulation::lifted;
@@ -88,19 +89,20 @@ ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, double rho) {
   if (lifted) {
     std::vector<Triplet> t;
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
-    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i));
+    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, soft.g(i) * d.w_nn(i));
     p.P = from_triplets(n, n, t);
     lifted_momentum_equality(s, /*friction=*/true, p);
     append_triplets(g, s.Jn, 0, 0, 1.0);
   } else {
     SparseMatrix P = d.W;
-    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += 2.0 * rho * std::exp(s.phi(i)) * d.w_nn(i);
+    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += soft.g(i) * d.w_nn(i);
     p.P = upper_triangle(P);
     for (Index c = 0; c < n; ++c)
       for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
         if (it.row() < nc) g.emplace_back(it.row(), c, it.value());
   }
   p.q.segment(ln, nc) = s.Jn * s.v_star;
+  if ((soft.v_ref.array() != 0.0).any()) p.q.segment(ln, nc) -= soft.v_ref;
   p.q.segment(lt, nf) = s.Jt * s.v_star;
   append_friction_cone_rows(s, ln, lt, g);
   p.G = from_triplets(m, n, g);

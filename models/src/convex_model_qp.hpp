@@ -46,10 +46,12 @@ struct ConvexModelData {
   SparseMatrix W;          ///< J M⁻¹ Jᵀ, rows and columns (contacts, friction rows); dual only
 };
 
-/// Phase 1: min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ bn.
-ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d);
+/// Phase 1: min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ (bn − v_ref), v_ref the softening's target
+/// velocity (0 for exp_phi).
+ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& softening);
 
-/// Phase 2 (contact_step.hpp) with u(nc) = +∞ for eᵀλn ≤ κ (the caller sets it).
-ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, double rho);
+/// Phase 2 (contact_step.hpp) with u(nc) = +∞ for eᵀλn ≤ κ (the caller sets it), with the
+/// normal softening's terms (normal_softening.hpp): ½ Σ g_i Wnn_i λn_i² − λnᵀ v_ref.
+ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& softening);
 
 }  // namespace lcprelax::detail

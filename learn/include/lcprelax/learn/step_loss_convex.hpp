@@ -13,7 +13,10 @@
 // phase1_deviation, else 0, in place of w):
 //   1. min_{λn ≥ 0} ½(1+w₁)λnᵀWnn λn + λnᵀ(Jn c₁ + max(φ,0)/Δt)   s.t. Wnn λn + bn ≥ 0
 //   2. κ = eᵀmax(λn¹, 0);
-//      min ½(1+w)λᵀWλ + ρ Σ_i exp(φ_i) Wnn_ii λn_i² + λᵀJc
+//      min ½(1+w)λᵀWλ + ρ Σ_i exp(φ_i) Wnn_ii λn_i² + λᵀJc   (softening exp_phi; the
+//      other methods of ConvexStepLossSettings::softening replace the ρ term by
+//      ½ Σ_i g(φ_i) Wnn_ii λn_i² − λnᵀ v_ref, and phase 1's λn term gets −max(v_ref, 0),
+//      models/normal_softening.hpp)
 //      s.t. Wn λ + bn ≥ 0,  λn ≥ 0,  eᵀλn ≤ κ(1 + s) + 1e-12 N·s,  |λt_f| ≤ μ_f λn_(row f)
 //   with s = 1e-6, else 1e-4, then 1e-2 where phase 2 fails (as models/src/convex_model.cpp).
 //   Phase 1's row Wnn λn + bn ≥ 0 is posed only for w > 0 (else κ can leave phase 2
@@ -36,8 +39,10 @@
 // gives ∂ℓ/∂(P, q, A, G, l, u); ∂ℓ/∂κ = (1 + s)·∂ℓ/∂u_κ, and ∂ℓ/∂λn¹_i = ∂ℓ/∂κ where
 // λn¹_i > 0; phase 1's adjoint likewise. The QP data's cotangents are then pulled back to
 // the island data: W = JDJᵀ gives ∂ℓ/∂J += 2 W̄ₛ J D and ∂ℓ/∂D_k += (Jᵀ W̄ₛ J)_kk (W̄ₛ the
-// symmetric part of ∂ℓ/∂W); the ρ term gives ∂ℓ/∂φ_i += P̄_ii·2ρ exp(φ_i)Wnn_ii and
-// ∂ℓ/∂Wnn_ii += P̄_ii·2ρ exp(φ_i); M = diag(1/minv) gives ∂ℓ/∂minv_k = −M̄_kk/minv_k²;
+// symmetric part of ∂ℓ/∂W); the softening gives ∂ℓ/∂φ_i += P̄_ii·g′(φ_i)Wnn_ii and
+// ∂ℓ/∂Wnn_ii += P̄_ii·g(φ_i) (exp_phi: g = g′ = 2ρ exp(φ_i)), and through v_ref
+// ∂ℓ/∂φ_i −= q̄_i ∂v_ref/∂φ, ∂ℓ/∂(Jn v*)_i −= q̄_i ∂v_ref/∂vn (q̄ of each phase's λn
+// term); M = diag(1/minv) gives ∂ℓ/∂minv_k = −M̄_kk/minv_k²;
 // max(φ, 0)/Δt gives 1/Δt where φ > 0 (0 else: a kink at φ = 0). Where the solution is
 // degenerate (a weakly active constraint, a non-unique λ) the derivative is that of the
 // interior point's final iterate (qp_solver.hpp); where an adjoint residual exceeds 1e-6
@@ -58,6 +63,8 @@ namespace lcprelax::learn {
 struct ConvexStepLossSettings {
   QpSettings qp;                 ///< both phases (QpSettings' defaults)
   double rho = 1e-3;             ///< ρ of the softening term (contact_step.hpp), ≥ 0
+  /// The normal softening (models/normal_softening.hpp); exp_phi is the ρ term above.
+  NormalSofteningSettings softening;
   double deviation = 1.0;        ///< w of the deviation penalty, ≥ 0
   /// Whether phase 1 carries the deviation penalty too (the default, the seeds' and the
   /// polygon's formulation). With it,

@@ -41,6 +41,10 @@
 //   1. min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ (Jn v* + max(φ,0)/Δt)             (no friction)
 //   2. κ = eᵀλn;  min ½ λᵀ W λ + λᵀ J v* + ρ λnᵀ diag(exp(φ)) diag(Wnn) λn
 //      s.t. Jn v⁺ + max(φ,0)/Δt ≥ 0, λn ≥ 0, eᵀλn ≤ κ, |λt| ≤ μ λn.
+//   The softening term is a setting (NormalSofteningSettings, normal_softening.hpp):
+//   exp_phi is the term above (the default); linear_penalty and mujoco_impedance replace
+//   it by ½ λnᵀ diag(g(φ)) diag(Wnn) λn − λnᵀ v_ref with their own g and target velocity,
+//   and subtract v_ref from phase 1's λn term too.
 //   Phase 1's solution with λt = 0 is feasible for phase 2, so phase 2 always has one.
 //   The softening term is scaled by diag(Wnn) with a dimensionless weight ρ (default 1e-3,
 //   SimulatorSettings::convex_rho) so that it is unit-consistent (λ in N·s, W in 1/kg);
@@ -53,6 +57,7 @@
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/models/contact_system.hpp>
+#include <lcprelax/models/normal_softening.hpp>
 
 #include <string>
 #include <vector>
@@ -132,7 +137,9 @@ constexpr Index kLiftedMinContacts = 24;
 /// Solves the convex two-phase model. When phase 1 succeeds but phase 2 fails (e.g. a plank
 /// 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
 /// the result has status failed and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
+/// `softening` chooses phase 2's normal softening (validated: InputError when invalid).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
-                                   double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic);
+                                   double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic,
+                                   const NormalSofteningSettings& softening = {});
 
 }  // namespace lcprelax

@@ -58,6 +58,9 @@ struct SimulatorSettings {
   QpSettings qp;             ///< for the convex model (eps_abs 1e-8 by default here)
   double penetration_slop = 1e-4;  ///< m: allowed overlap before projection
   double convex_rho = 1e-3;  ///< weight ρ of the convex model's λnᵀdiag(exp(φ))diag(Wnn)λn term
+  /// The convex model's normal softening (normal_softening.hpp): exp_phi (the term above,
+  /// default), linear_penalty (uses convex_rho too) or mujoco_impedance.
+  NormalSofteningSettings convex_softening;
   bool post_stabilization = true;
   bool warm_start = true;
   int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
