@@ -62,7 +62,7 @@ TEST(CliLearnBlock, DataFileAndLandscape) {
 
 TEST(CliLearnBlock, BadInputExitsTwo) {
   for (const std::string& args : std::vector<std::string>{"--method foo", "--init-mu -1", "--epochs -2", "--samples 0", "--noise nan", "--max-dissipation sideways",
-        "--a3 -5", "--optimizer lbfgs", "--data /nonexistent.csv", "--data '" + kData + "/block/nan.csv'"}) {
+        "--a3 -5", "--optimizer newton", "--data /nonexistent.csv", "--data '" + kData + "/block/nan.csv'"}) {
     const CliRun r = run_cli("learn block " + args + " --epochs 0 --json");
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.out;
     EXPECT_TRUE(invalid_input_json(r.out)) << args;
