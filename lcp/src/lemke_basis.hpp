@@ -20,8 +20,10 @@
 // refactorization interval are fixed then). solve_column, solve, inverse_rows and replace
 // allocate nothing; refactor allocates nothing on the dense basis, and on the sparse one
 // only inside KLU's analysis and numeric factorization (klu_analyze, klu_factor allocate
-// their Symbolic and Numeric objects). solve_transposed (used by backward() only)
-// allocates a temporary.
+// their Symbolic and Numeric objects) and for the storage of the factors' row-wise copy
+// (sparse/hypersparse_solve.hpp), which inverse_row_nonzeros fills at the first tie after
+// a refactorization; its output vectors allocate only below capacity n. solve_transposed
+// (used by backward() only) allocates a temporary.
 #include <lcprelax/sparse/types.hpp>
 
 #include <memory>
@@ -62,6 +64,11 @@ class LemkeBasis {
   virtual void solve_transposed(Vector& x) const = 0;
   /// Rows `rows` of B⁻¹, transposed: out.col(k) = (row rows[k] of B⁻¹)ᵀ; out is n × rows.size().
   virtual void inverse_rows(const std::vector<Index>& rows, Eigen::Ref<DenseMatrix> out) = 0;
+  /// Row r of B⁻¹ with its nonzeros only: column indices (in no particular order) into
+  /// `index`, values into `value` (both cleared first). The dense basis reads its B⁻¹; the
+  /// sparse one solves Bᵀy = e_r hypersparsely (work proportional to the nonzeros touched,
+  /// sparse/hypersparse_solve.hpp). Entries may be numerically zero.
+  virtual void inverse_row_nonzeros(Index r, std::vector<int>& index, std::vector<double>& value) = 0;
   /// Replaces the column at position r by the column last passed to solve_column, whose
   /// solved form is a (a(r) ≠ 0). Returns false when a refactorization is due or the
   /// update is numerically unsafe; the caller then calls refactor().

@@ -102,6 +102,16 @@ class DenseLemkeBasis final : public LemkeBasis {
     for (std::size_t k = 0; k < rows.size(); ++k) out.col(static_cast<Index>(k)) = binv_.row(rows[k]).transpose();
   }
 
+  void inverse_row_nonzeros(Index r, std::vector<int>& index, std::vector<double>& value) override {
+    index.clear();
+    value.clear();
+    for (Index j = 0; j < cols_.n; ++j)
+      if (binv_(r, j) != 0.0) {
+        index.push_back(static_cast<int>(j));
+        value.push_back(binv_(r, j));
+      }
+  }
+
   // Gauss–Jordan step on B⁻¹: row r /= a_r, then row i −= a_i · row r for i ≠ r (one
   // rank-1 update with a_r set to 0).
   bool replace(Index r, const Vector& a) override {

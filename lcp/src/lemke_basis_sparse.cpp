@@ -2,13 +2,18 @@
 // replaced since (formulas in lemke_basis.hpp). An update is refused, forcing a fresh
 // factorization of the current basis, when |P| reaches min(refactor_interval,
 // kMaxSchurUpdates) or the Schur complement's reciprocal condition estimate falls below
-// 1e-12. B₀ = I (the all-w basis Lemke starts from) is represented without KLU.
+// 1e-12. B₀ = I (the all-w basis Lemke starts from) is represented without KLU. Rows of
+// B⁻¹ for the lexicographic tie-breaks come from hypersparse transposed solves with B₀'s
+// factors (sparse/hypersparse_solve.hpp), copied row-wise from KLU at the first tie after
+// a factorization (a dense transposed solve if they cannot be extracted).
 //
 // Work arrays (W, S and its LU, the CSC arrays of B₀, the solved column) are sized at
 // construction; S and its LU have fixed capacity kMaxSchurUpdates², and the small blocks
-// of the Schur updates live on the stack, so only klu_analyze/klu_factor allocate.
+// of the Schur updates live on the stack, so only klu_analyze/klu_factor allocate, and
+// the storage of the factors' row-wise copy, reserved right after each factorization.
 #include "lemke_basis.hpp"
 
+#include <lcprelax/sparse/hypersparse_solve.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
 #include <Eigen/LU>
@@ -34,6 +39,8 @@ class SparseLemkeBasis final : public LemkeBasis {
         B0_(columns.n, columns.n),
         pending_(columns.n) {
     pos_.reserve(static_cast<std::size_t>(max_updates_));
+    rhs_index_.reserve(static_cast<std::size_t>(max_updates_) + 1);
+    rhs_value_.reserve(static_cast<std::size_t>(max_updates_) + 1);
     B0_.data().resize(columns.M->nonZeros() + 2 * columns.n);
   }
 
@@ -41,6 +48,7 @@ class SparseLemkeBasis final : public LemkeBasis {
     const Index n = cols_.n;
     for (Index p : pos_) slot_[p] = -1;
     pos_.clear();
+    rows_.invalidate();
     identity_ = true;
     for (Index k = 0; k < n && identity_; ++k) identity_ = basic[k] == k;
     if (identity_) return true;
@@ -56,8 +64,9 @@ class SparseLemkeBasis final : public LemkeBasis {
     }
     outer[n] = static_cast<int>(p);
     B0_.data().resize(p);
-    if (!klu_.analyze(B0_).ok()) return false;
-    return klu_.factorize(B0_).ok();
+    if (!klu_.analyze(B0_).ok() || !klu_.factorize(B0_).ok()) return false;
+    rows_.reserve(klu_);  // storage for rows_ (built at the first tie) allocated with KLU's
+    return true;
   }
 
   void solve_column(Index var, Vector& a) override {
@@ -101,6 +110,36 @@ class SparseLemkeBasis final : public LemkeBasis {
     if (!identity_) klu_.solve_transposed(out);
   }
 
+  // Row r of B⁻¹ = (B⁻ᵀe_r)ᵀ with B⁻ᵀe_r = B₀⁻ᵀ(e_r − E_P t), t = S⁻ᵀ(W − E_P)ᵀe_r (as in
+  // solve_transposed): a right-hand side with at most |P| + 1 nonzeros, solved hypersparsely
+  // with B₀'s factors (extracted from KLU at the first row after a refactorization).
+  void inverse_row_nonzeros(Index r, std::vector<int>& index, std::vector<double>& value) override {
+    const Index k = static_cast<Index>(pos_.size());
+    rhs_index_.clear();
+    rhs_value_.clear();
+    rhs_index_.push_back(static_cast<int>(r));
+    rhs_value_.push_back(1.0);
+    if (k > 0) {
+      SchurVector s(k);
+      for (Index j = 0; j < k; ++j) s(j) = W_(r, j) - (pos_[j] == r ? 1.0 : 0.0);
+      const SchurVector t = s_lu_.transpose().solve(s);
+      for (Index j = 0; j < k; ++j) {
+        if (pos_[j] == r) rhs_value_[0] -= t(j);  // distinct indices
+        else if (t(j) != 0.0) {
+          rhs_index_.push_back(static_cast<int>(pos_[j]));
+          rhs_value_.push_back(-t(j));
+        }
+      }
+    }
+    if (identity_) {
+      index = rhs_index_;
+      value = rhs_value_;
+      return;
+    }
+    if (!rows_.built() && !rows_.build(klu_)) return dense_row(r, index, value);
+    rows_.solve(static_cast<int>(rhs_index_.size()), rhs_index_.data(), rhs_value_.data(), index, value);
+  }
+
   bool replace(Index r, const Vector& /*a*/) override {
     Index j = slot_[r];
     if (j < 0) {
@@ -128,6 +167,20 @@ class SparseLemkeBasis final : public LemkeBasis {
     if (!identity_) klu_.solve(x);
   }
 
+  // Fallback of inverse_row_nonzeros (factors not extractable): a dense transposed solve.
+  void dense_row(Index r, std::vector<int>& index, std::vector<double>& value) {
+    Vector e = Vector::Zero(cols_.n);
+    e(r) = 1.0;
+    solve_transposed(e);
+    index.clear();
+    value.clear();
+    for (Index j = 0; j < cols_.n; ++j)
+      if (e(j) != 0.0) {
+        index.push_back(static_cast<int>(j));
+        value.push_back(e(j));
+      }
+  }
+
   // y ← y − (W − E_P) S⁻¹ y_P, turning B₀⁻¹r into B⁻¹r.
   void correct(Vector& y) const {
     const Index k = static_cast<Index>(pos_.size());
@@ -150,6 +203,9 @@ class SparseLemkeBasis final : public LemkeBasis {
   Eigen::PartialPivLU<SchurMatrix> s_lu_;
   SparseMatrix B0_;         // B₀ (CSC), input of KLU
   Vector pending_;          // B₀⁻¹ c of the last solve_column
+  sparse::HypersparseTransposedSolver rows_;   // rows of B₀⁻¹ (built on first use)
+  std::vector<int> rhs_index_;                 // right-hand side of a row of B⁻¹
+  std::vector<double> rhs_value_;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <string>
 
 namespace lcprelax {
@@ -79,8 +80,9 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   polish.max_pivots = std::max<long>(1, n / 10);
   LemkeSettings warm_only = plain;  // the warm basis if it is feasible; a cold start stops at once
   warm_only.max_pivots = 1;
-  std::vector<LemkeSolver> solvers;  // kept alive: r points into the accepted one
-  solvers.reserve(2 * kLcpPerturbationSeeds + 3);
+  // Kept alive: r and inexact point into the results of earlier attempts. A deque never
+  // moves its elements on emplace_back, so adding an attempt cannot leave them dangling.
+  std::deque<LemkeSolver> solvers;
   long pivots = 0;
   const LcpResult* r = nullptr;
   auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LcpResult& {

@@ -178,6 +178,41 @@ std::vector<Index> KluLu::zero_pivot_columns(const SparseMatrix& A, double relat
   return out;
 }
 
+void KluLu::factor_counts(Index& lnz, Index& unz, Index& offdiagonal) const {
+  lnz = unz = offdiagonal = 0;
+  if (!impl_ || !impl_->factored || !impl_->numeric) return;
+  lnz = impl_->numeric->lnz;
+  unz = impl_->numeric->unz;
+  offdiagonal = impl_->numeric->nzoff;
+}
+
+bool KluLu::extract(Factors& out) const {
+  if (!impl_) return false;
+  const Impl& m = *impl_;
+  out.n = m.n;
+  if (!m.factored) return false;
+  const auto sz = [](Index k) { return static_cast<std::size_t>(std::max<Index>(k, 1)); };
+  const Index n = m.n;
+  out.Lp.resize(sz(n + 1));
+  out.Up.resize(sz(n + 1));
+  out.Fp.resize(sz(n + 1));
+  out.P.resize(sz(n));
+  out.Q.resize(sz(n));
+  out.Rs.resize(sz(n));
+  if (n == 0) return true;
+  const Index lnz = m.numeric->lnz, unz = m.numeric->unz, fnz = m.numeric->nzoff;
+  out.Li.resize(sz(lnz));
+  out.Lx.resize(sz(lnz));
+  out.Ui.resize(sz(unz));
+  out.Ux.resize(sz(unz));
+  out.Fi.resize(sz(fnz));
+  out.Fx.resize(sz(fnz));
+  klu_common common = m.common;
+  return klu_extract(m.numeric, m.symbolic, out.Lp.data(), out.Li.data(), out.Lx.data(), out.Up.data(), out.Ui.data(),
+                     out.Ux.data(), out.Fp.data(), out.Fi.data(), out.Fx.data(), out.P.data(), out.Q.data(),
+                     out.Rs.data(), nullptr, &common) != 0;
+}
+
 FactorResult KluLu::refactorize(const SparseMatrix& A) {
   if (!impl_) return moved_from();
   Impl& m = *impl_;

@@ -70,6 +70,11 @@ struct LemkeSettings {
   /// Refactorize the basis from scratch every this many pivots (drift control; for the
   /// sparse method also the largest Schur-complement update, memory n·interval doubles).
   int refactor_interval = 50;
+  /// Lexicographic tie-breaks on the rows of B⁻¹ formed with their nonzeros only (true:
+  /// hypersparse transposed solves on the sparse basis, only the columns where a tied row
+  /// is nonzero visited) or as full rows (false: the reference, one dense transposed solve
+  /// per tied row). Same decisions up to the roundoff of the solves (lcp/src/lemke_lexicographic.hpp).
+  bool sparse_tie_rows = true;
   /// Retries after a ray termination or numerical failure (not after the pivot limit):
   /// first `covering_retries` solves with perturbed covering vectors (d_i·(1 + (i mod 7)/7),
   /// then d_i·(1 + 10⁻³i), alternating), then `regularization_retries` solves on M + εI with
@@ -109,7 +114,8 @@ struct LcpInfo {
   bool warm_started = false;  ///< the warm-start basis was complementary and feasible
   bool crash_started = false;  ///< Lemke ran from the (infeasible) warm-start basis
   long crash_pivots = 0;       ///< pivots of that crash path (included in pivots)
-  int repair_rounds = 0;    ///< rounds of basis repair of a singular crash basis (lemke.cpp)
+  long tie_breaks = 0;      ///< pivots whose ratio test compared rows of B⁻¹ (lexicographic ties)
+  int repair_rounds = 0;    ///< rounds of basis repair of a singular crash basis (lemke_crash.cpp)
   LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
   long refactorizations = 0;  ///< basis factorizations from scratch
   double regularization = 0.0;  ///< ε of the accepted retry on M + εI, 0 if none

@@ -14,7 +14,8 @@
 //   update of the columns replaced since (Eldersveld & Saunders 1992), refactorized every
 //   refactor_interval replacements: memory O(nnz(LU) + n·refactor_interval), no dense n×n
 //   array. Rows of B⁻¹ for the tie-breaks are formed only for rows still tied after the
-//   ratio test (one transposed solve each).
+//   ratio test, with their nonzeros only (hypersparse transposed solves with B₀'s factors;
+//   LemkeSettings::sparse_tie_rows, lcp/src/lemke_lexicographic.hpp).
 // `automatic` uses dense for n ≤ dense_max_n (measured crossover, bench/README.md). Both
 // give the same pivot sequence up to roundoff in ties.
 //
@@ -29,13 +30,14 @@
 // previous solve, M unchanged), it is not factorized again.
 //
 // Memory: setup() sizes everything the solver works with (the basis factorization's
-// arrays, x_B, the solved entering column, the ratio-test row lists, a buffer of B⁻¹ rows
-// for ties: n columns dense, min(n, 64) sparse). A repeated solve() of the same size then
-// allocates nothing on the dense basis; on the sparse basis only KLU's factorizations from
-// scratch allocate (klu_analyze/klu_factor: at a warm basis that is not already factored,
-// every refactor_interval pivots, and for the final basis), the pivots between them do
-// not. Exceptions: the tie buffer grows when more rows tie than ever before on this
-// solver, and the retries after a failure copy M.
+// arrays, x_B, the solved entering column, the ratio-test row lists, the tie-break buffers:
+// 4n nonzeros of B⁻¹ rows, or with full rows n columns dense, min(n, 64) sparse). A
+// repeated solve() of the same size then allocates nothing on the dense basis; on the
+// sparse basis only KLU's factorizations from scratch allocate (klu_analyze/klu_factor,
+// and the storage of the row-wise copy of the factors for the tie-breaks: at a warm basis
+// that is not already factored, every refactor_interval pivots, and for the final basis),
+// the pivots between them do not. Exceptions: the tie buffers grow when a tie is larger
+// than ever before on this solver, and the retries after a failure copy M.
 //
 // Backward: at a solution with complementary basis B (columns e_i for basic w_i and −M_:j
 // for basic z_j), the basic values are x_B = B⁻¹q, so for ℓ(z):
@@ -48,6 +50,7 @@
 #include <lcprelax/lcp/lcp_types.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace lcprelax {
 
@@ -72,6 +75,10 @@ class LemkeSolver {
   /// basis from scratch (allocation-counting tests exclude KLU's factorizations with it);
   /// nullptr (the default) for none.
   void set_refactorization_hook(void (*hook)(bool starting));
+  /// Instrumentation: when not null, every pivot appends its entering and its leaving
+  /// variable (numbering of lemke_basis.hpp: w_i = i, z_j = n + j, z₀ = 2n) to *trace
+  /// (allocates); nullptr (the default) for none.
+  void set_pivot_trace(std::vector<Index>* trace);
 
  private:
   struct Impl;

@@ -37,6 +37,22 @@ class KluLu final : public Factorization {
   /// numerically nonsingular. Leaves no usable factorization (factorize() again).
   std::vector<Index> zero_pivot_columns(const SparseMatrix& A, double relative_tolerance);
 
+  /// The factors of the last factorization (klu_extract), in KLU's convention
+  ///     N = L·U + F,   N_kl = A(P[k], Q[l]) / Rs[k]
+  /// (row k of N is row P[k] of A divided by Rs[k]: klu_extract returns the scale factors
+  /// in the permuted order, as a test of hypersparse_solve checks; column l of N is column
+  /// Q[l] of A); L unit lower triangular (diagonal stored), U upper triangular, both block
+  /// diagonal over the BTF blocks; F the entries above the diagonal blocks. All CSC over
+  /// the permuted indices. Allocates only beyond out's capacity. False when not factorized.
+  struct Factors {
+    Index n = 0;
+    std::vector<int> Lp, Li, Up, Ui, Fp, Fi, P, Q;
+    std::vector<double> Lx, Ux, Fx, Rs;
+  };
+  bool extract(Factors& out) const;
+  /// Entries of L, U and F of the last factorization (0 when not factorized).
+  void factor_counts(Index& lnz, Index& unz, Index& offdiagonal) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -1,0 +1,81 @@
+#pragma once
+// Internal: the state of LemkeSolver and the steps of a solve, split by file:
+// - lemke.cpp: setup, the retries of solve(), the factorization of the current basis;
+// - lemke_pivot.cpp: the cold start, Lemke's pivots and the lexicographic ratio test;
+// - lemke_crash.cpp: the warm and crash starts and the repair of a singular warm basis;
+// - lemke_solution.cpp: the solution from the final basis, and backward().
+// Conventions (variable numbering, tableau) in lemke_basis.hpp; the method in lemke.hpp.
+#include <lcprelax/lcp/lemke.hpp>
+
+#include "lemke_basis.hpp"
+#include "lemke_lexicographic.hpp"
+
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace lcprelax {
+
+struct LemkeSolver::Impl {
+  LemkeSettings settings;
+  Index n = 0;
+  SparseMatrix M;
+  Vector q_user;     // q as given
+  Vector q, d;       // q = q_user / q_norm: the pivoting runs on ‖q‖∞ = 1 (z scales with q)
+  double q_norm = 1.0;
+  double tol = 0, res_tol = 0;
+  double mnorm = 0;  // ‖M‖∞
+  long max_pivots = 0;
+  bool is_setup = false;
+  LemkeMethod method = LemkeMethod::dense;  // the basis in use (settled at setup)
+  std::vector<bool> warm;
+  LcpResult result;
+  std::vector<Index> basic;  // variable per row: [0,n) w, [n,2n) z, 2n z0
+  std::unique_ptr<detail::LemkeBasis> basis;
+  void (*refactor_hook)(bool) = nullptr;
+  std::vector<Index>* pivot_trace = nullptr;  // set_pivot_trace
+
+  // Which basis the factorization holds: factored_basic, valid while factor_current
+  // (cleared by a column replacement and by any change of M or d).
+  std::vector<Index> factored_basic;
+  bool factor_current = false;
+
+  // Work arrays, sized at setup (the pivot loop allocates nothing).
+  Vector xB, a, ratio_col, refine;  // x_B; B⁻¹(entering column); ratio denominators; residual
+  Vector z_spare, w_spare;           // storage of result.z / result.w between solves
+  Vector z_clip, w_clip;             // z clipped at 0 and its w (extract_solution)
+  Vector d_cover;                    // the settings' covering vector during a crash start
+  std::vector<Index> rows, keep;     // candidate rows of the ratio test
+  detail::LexicographicTie ties;     // the tie-break on rows of B⁻¹ (lemke_lexicographic.hpp)
+
+  Index z0() const { return 2 * n; }
+  static Index complement(Index var, Index n) { return var < n ? var + n : var - n; }
+
+  // lemke.cpp
+  void set_q(const Vector& q_in);
+  void allocate();
+  void reset_result();
+  void take(Vector& v, Vector& spare) const;
+  bool refactor(Vector& x);
+  void finish(LcpStatus status, const char* message) {
+    result.info.status = status;
+    result.info.message = message;
+  }
+
+  // lemke_pivot.cpp
+  void run();
+  void pivot_from_current_basis();
+  Index lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0);
+
+  // lemke_crash.cpp
+  bool warm_basis_is_factored() const;
+  bool load_warm_basis();
+  bool try_warm_start(bool factorized);
+  bool repair_warm_basis();
+  bool try_crash_start();
+
+  // lemke_solution.cpp
+  void extract_solution();
+};
+
+}  // namespace lcprelax

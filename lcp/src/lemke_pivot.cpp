@@ -1,0 +1,100 @@
+// Lemke's pivots: the cold start from the all-w basis, the pivot loop and the
+// lexicographic minimum-ratio test (method in lemke.hpp, tie-break on rows of B⁻¹ in
+// lemke_lexicographic.hpp).
+#include "lemke_impl.hpp"
+
+#include <algorithm>
+
+namespace lcprelax {
+
+// Lexicographic minimum ratio over the candidate rows `rows` (key: rows of [x_B, B⁻¹] /
+// den_i). Ratios of a key column v tie with the minimum θ when v_i/den_i ≤ θ + t, with
+// - for x_B: t = tol·(|θ| + 1/den_max), den_max = max den_i over the rows: relative to
+//   θ, plus the roundoff of x_B seen through the largest pivot. q is normalized to
+//   ‖q‖∞ = 1, so this is scale-free (resting contact has ‖q‖ ~ 1e-19). An absolute
+//   ratio tolerance would make the ratios of size 1e-6 of stiff contact problems
+//   (‖M‖ ~ 1e3) ties and break feasibility (granular fc2d problem);
+// - for the B⁻¹ columns: t = tol·(1 + |θ|), absolute: on lcp_tobenna (bases with
+//   pivots up to 4e6) anything tighter misses roundoff ties and cycles into a singular
+//   basis.
+// Rows of B⁻¹ are formed only for rows still tied after x_B, with their nonzeros only on
+// the sparse basis (lemke_lexicographic.hpp). Returns −1 when a ratio is not finite (NaN
+// or ∞ in x_B or B⁻¹: the basis has lost all accuracy).
+Index LemkeSolver::Impl::lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0) {
+  double den_max = 0.0;
+  for (Index i : rows) den_max = std::max(den_max, den(i));
+  if (!detail::keep_minimal_ratio(rows, keep, ties.ratios, den, tol, 1.0 / den_max, [&](Index i) { return x(i); })) return -1;
+  if (prefer_z0)
+    for (Index i : rows)
+      if (basic[i] == z0()) return i;
+  if (rows.size() == 1) return rows.front();
+  ++result.info.tie_breaks;
+  return ties.reduce(rows, keep, den, tol, *basis) ? rows.front() : -1;
+}
+
+void LemkeSolver::Impl::run() {
+  if (n == 0) {
+    result.z.resize(0);
+    result.w.resize(0);
+    result.z_basic.clear();
+    result.info.complementarity = 0.0;
+    return finish(LcpStatus::solved, "empty problem");
+  }
+  long crash_pivots = 0;
+  if (!warm.empty()) {
+    bool factorized = load_warm_basis();
+    if (!factorized && settings.crash_start && repair_warm_basis()) factorized = load_warm_basis();
+    if (try_warm_start(factorized)) return;
+    if (factorized && settings.crash_start) {
+      if (try_crash_start()) return;
+      crash_pivots = result.info.pivots;  // a failed crash path: cold start, pivots add up
+      factor_current = false;
+    }
+  }
+  for (Index i = 0; i < n; ++i) basic[i] = i;
+  if (q.minCoeff() >= 0) return extract_solution();  // z = 0 solves it
+  if (!refactor(xB)) return finish(LcpStatus::numerical_error, "identity basis failed to factorize");
+  pivot_from_current_basis();
+  result.info.pivots += crash_pivots;
+}
+
+// Lemke's pivots from the factorized current basis (without z₀) and x_B = B⁻¹q: z₀
+// enters at the most negative x_B,i/(B⁻¹d)_i (lexicographically on [x_B, B⁻¹]/(B⁻¹d)).
+void LemkeSolver::Impl::pivot_from_current_basis() {
+  result.info.pivots = 0;
+  Index entering = z0();
+  basis->solve_column(entering, a);  // = −d
+  ratio_col = -a;
+  rows.clear();
+  for (Index i = 0; i < n; ++i) rows.push_back(i);
+  Index r = lexicographic_row(ratio_col, xB, false);
+  for (long pivot = 0;; ++pivot) {
+    if (r < 0) return finish(LcpStatus::numerical_error, "non-finite ratio in the minimum-ratio test (basis lost accuracy)");
+    // Pivot on (r, entering): update the factorization and x_B.
+    const bool updated = basis->replace(r, a);
+    factor_current = false;
+    const double ar = a(r);
+    xB(r) /= ar;
+    for (Index i = 0; i < n; ++i)
+      if (i != r && a(i) != 0.0) xB(i) -= a(i) * xB(r);
+    const Index leaving = basic[r];
+    if (pivot_trace) {
+      pivot_trace->push_back(entering);
+      pivot_trace->push_back(leaving);
+    }
+    basic[r] = entering;
+    result.info.pivots = pivot + 1;
+    if (leaving == z0()) return extract_solution();
+    if (result.info.pivots >= max_pivots) return finish(LcpStatus::pivot_limit, "pivot limit reached");
+    if (!updated && !refactor(xB)) return finish(LcpStatus::numerical_error, "basis became singular");
+    entering = complement(leaving, n);
+    basis->solve_column(entering, a);
+    rows.clear();
+    for (Index i = 0; i < n; ++i)
+      if (a(i) > tol) rows.push_back(i);
+    if (rows.empty()) return finish(LcpStatus::ray_termination, "ray termination: no solution found by Lemke");
+    r = lexicographic_row(a, xB, true);
+  }
+}
+
+}  // namespace lcprelax
