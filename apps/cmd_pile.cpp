@@ -114,6 +114,9 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
     if (!o.export_fc2d.empty() && k + 1 == steps) {
       // the last step's contact problem, before it is solved
       const std::vector<Contact> c = find_contacts(sim.world(), CollisionSettings{sim.settings().margin});
+      if (c.empty())  // a Siconos fc2d problem needs at least one contact (our reader refuses 0)
+        throw InputError("--export-fc2d: the last step (" + std::to_string(steps) +
+                         ") has no contacts, nothing to export; run more --steps");
       const io::Fc2dData d = export_fc2d(sim.world(), c, sim.settings().dt);
       io::write_siconos_fc2d(o.export_fc2d, d.W, d.q, d.mu);
     }

@@ -5,7 +5,9 @@
 #   scripts/fuzz.sh [SECONDS]
 #
 # Environment: FUZZ_BUILD_DIR (default <repo>/build-fuzz), FUZZ_TARGETS (space-separated
-# subset of the targets), FUZZ_JOBS (parallel build jobs, default 2).
+# subset of the targets), FUZZ_JOBS (parallel build jobs, default 2), FUZZ_RUNS (also stop a
+# target after this many executions, e.g. 1000000; default: time only), FUZZ_TIMEOUT
+# (seconds per input taken as a hang, default 1; a loaded machine may need 3).
 # Corpora live in $FUZZ_BUILD_DIR/corpus/<target>/ (seeded from tests/data on each run, and
 # kept between runs); crashes in $FUZZ_BUILD_DIR/artifacts/, logs in $FUZZ_BUILD_DIR/logs/.
 # Prints the executions of each target and exits 1 if any target found a crash, a hang
@@ -16,6 +18,8 @@ SECONDS_PER_TARGET=${1:-60}
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${FUZZ_BUILD_DIR:-$ROOT/build-fuzz}
 JOBS=${FUZZ_JOBS:-2}
+RUNS=${FUZZ_RUNS:--1}
+TIMEOUT=${FUZZ_TIMEOUT:-1}
 ALL_TARGETS="fuzz_qps fuzz_siconos_lcp fuzz_siconos_fc2d fuzz_matrix_market fuzz_scene_json fuzz_trajectory_csv fuzz_qp_solve"
 TARGETS=${FUZZ_TARGETS:-$ALL_TARGETS}
 
@@ -63,7 +67,7 @@ for t in $TARGETS; do
   [ "$t" = fuzz_qp_solve ] && max_len=8192
   echo "== $t: ${SECONDS_PER_TARGET} s"
   if "$BUILD/tests/fuzz/$t" "$BUILD/corpus/$t" -dict="$ROOT/tests/fuzz/$(dict_of "$t")" \
-      -max_total_time="$SECONDS_PER_TARGET" -rss_limit_mb=2048 -timeout=1 -max_len=$max_len \
+      -max_total_time="$SECONDS_PER_TARGET" -runs="$RUNS" -rss_limit_mb=2048 -timeout="$TIMEOUT" -max_len=$max_len \
       -artifact_prefix="$BUILD/artifacts/$t-" -print_final_stats=1 >"$log" 2>&1; then
     result=ok
   else

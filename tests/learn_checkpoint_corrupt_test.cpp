@@ -135,8 +135,8 @@ TEST(LearnCheckpointCorrupt, CliRejectsBadCheckpointsWithExit2) {
   EXPECT_EQ(run_cli(resume).exit_code, 0);
 
   fs::remove(f);
-  expect_bad_input(run_cli(resume), "cannot read the checkpoint '" + f + "'");
-  expect_bad_input(run_cli(kBlock + " --epochs 4 --json --checkpoint /nonexistent-dir/x.ckpt"), "cannot write the checkpoint");
+  expect_bad_input(run_cli(resume), "checkpoint: cannot read '" + f + "'");
+  expect_bad_input(run_cli(kBlock + " --epochs 4 --json --checkpoint /nonexistent-dir/x.ckpt"), "checkpoint: cannot write");
   expect_bad_input(run_cli("learn block --epochs 0 --json --checkpoint " + f), "need --epochs > 0");
   EXPECT_FALSE(fs::exists(f));
 }

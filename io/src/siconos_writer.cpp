@@ -1,10 +1,12 @@
 // Siconos fc2d writer (siconos_writer.hpp).
 #include <lcprelax/io/siconos_writer.hpp>
+#include <lcprelax/core/atomic_file.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <ostream>
 
 namespace lcprelax::io {
@@ -49,10 +51,12 @@ void write_siconos_fc2d(std::ostream& out, const SparseMatrix& W_in, const Vecto
   if (!out) throw InputError("fc2d writer: write failed");
 }
 
+// Written whole to memory first, then atomically (core/atomic_file.hpp): a killed run
+// never leaves a truncated problem file under `path`.
 void write_siconos_fc2d(const std::string& path, const SparseMatrix& W, const Vector& q, const Vector& mu) {
-  std::ofstream out(path);
-  if (!out) throw InputError("cannot write '" + path + "'");
+  std::ostringstream out;
   write_siconos_fc2d(out, W, q, mu);
+  write_file_atomically(path, out.str());
 }
 
 }  // namespace lcprelax::io

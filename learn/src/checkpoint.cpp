@@ -5,7 +5,7 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
 
-#include "atomic_file.hpp"
+#include <lcprelax/core/atomic_file.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -225,12 +225,26 @@ TrainCheckpoint decode_checkpoint(const std::string& bytes, const std::string& p
 }
 
 void write_checkpoint(const std::string& path, const TrainCheckpoint& checkpoint) {
-  detail::write_file_atomically(path, encode_checkpoint(checkpoint));
+  write_file_atomically(path, encode_checkpoint(checkpoint));
 }
 
-TrainCheckpoint read_checkpoint(const std::string& path) { return decode_checkpoint(detail::read_whole_file(path), path); }
+TrainCheckpoint read_checkpoint(const std::string& path) {
+  std::string bytes;
+  try {
+    bytes = read_whole_file(path);
+  } catch (const InputError& e) {
+    throw InputError(std::string("checkpoint: ") + e.what());  // "checkpoint: cannot read 'PATH': ..."
+  }
+  return decode_checkpoint(bytes, path);
+}
 
-void check_checkpoint_writable(const std::string& path) { detail::check_writable(path); }
+void check_checkpoint_writable(const std::string& path) {
+  try {
+    check_writable(path);
+  } catch (const InputError& e) {
+    throw InputError(std::string("checkpoint: ") + e.what());
+  }
+}
 
 std::string checkpoint_path_for_rank(const std::string& path, int rank) {
   return rank == 0 ? path : path + ".rank" + std::to_string(rank);

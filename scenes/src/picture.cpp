@@ -1,5 +1,6 @@
 // Pictures of a world with Cairo (scenes/picture.hpp).
 #include <lcprelax/scenes/picture.hpp>
+#include <lcprelax/core/atomic_file.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <algorithm>
@@ -242,6 +243,12 @@ struct ContextDeleter {
   void operator()(cairo_t* c) const { cairo_destroy(c); }
 };
 
+// cairo_write_func_t appending to a std::string.
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
 void check(cairo_status_t status, const std::string& path) {
   if (status != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error("write_picture: " + path + ": " + cairo_status_to_string(status));
@@ -254,9 +261,12 @@ void write_picture(const std::string& path, const World& world, const std::vecto
   const Format format = format_of(path);
   check_input(world, contacts, options);
   const View view = fit_view(world, options.width_px);
+  // Both formats are rendered into memory and the file is then replaced atomically
+  // (core/atomic_file.hpp): a run killed while writing frames never leaves a truncated one.
+  std::string bytes;
   std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
       format == Format::png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, view.width, view.height)
-                            : cairo_svg_surface_create(path.c_str(), view.width, view.height));
+                            : cairo_svg_surface_create_for_stream(append_bytes, &bytes, view.width, view.height));
   check(cairo_surface_status(surface.get()), path);
 #if CAIRO_VERSION >= CAIRO_VERSION_ENCODE(1, 16, 0)
   if (format == Format::svg) cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
@@ -266,9 +276,10 @@ void write_picture(const std::string& path, const World& world, const std::vecto
     draw(cr.get(), view, world, contacts, options);
     check(cairo_status(cr.get()), path);
   }
-  if (format == Format::png) check(cairo_surface_write_to_png(surface.get(), path.c_str()), path);
-  cairo_surface_finish(surface.get());  // flushes and closes the SVG file
+  if (format == Format::png) check(cairo_surface_write_to_png_stream(surface.get(), append_bytes, &bytes), path);
+  cairo_surface_finish(surface.get());  // flushes the SVG stream
   check(cairo_surface_status(surface.get()), path);
+  write_file_atomically(path, bytes);
 }
 
 std::string write_frame(const std::string& dir, int index, const World& world,

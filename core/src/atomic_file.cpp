@@ -1,6 +1,6 @@
 // Crash-safe file replacement: temporary file, fsync, rename, fsync of the directory
 // (atomic_file.hpp).
-#include "atomic_file.hpp"
+#include <lcprelax/core/atomic_file.hpp>
 
 #include <lcprelax/core/errors.hpp>
 
@@ -15,7 +15,7 @@
 #include <fstream>
 #include <iterator>
 
-namespace lcprelax::learn::detail {
+namespace lcprelax {
 
 namespace {
 
@@ -29,7 +29,7 @@ std::string temporary_of(const std::string& path) { return path + ".tmp"; }
 int open_temporary(const std::string& path) {
   const std::string tmp = temporary_of(path);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail(path, "write the checkpoint (temporary file '" + tmp + "')", errno);
+  if (fd < 0) fail(path, "write (temporary file '" + tmp + "')", errno);
   return fd;
 }
 
@@ -81,7 +81,7 @@ void write_file_atomically(const std::string& path, const std::string& bytes) {
 
 void check_writable(const std::string& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) throw InputError("cannot write the checkpoint '" + path + "': it is a directory");
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) throw InputError("cannot write '" + path + "': it is a directory");
   const int fd = open_temporary(path);
   ::close(fd);
   std::remove(temporary_of(path).c_str());
@@ -89,13 +89,13 @@ void check_writable(const std::string& path) {
 
 std::string read_whole_file(const std::string& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) fail(path, "read the checkpoint", errno);
-  if (S_ISDIR(st.st_mode)) throw InputError("cannot read the checkpoint '" + path + "': it is a directory");
+  if (::stat(path.c_str(), &st) != 0) fail(path, "read", errno);
+  if (S_ISDIR(st.st_mode)) throw InputError("cannot read '" + path + "': it is a directory");
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "read the checkpoint", errno);
+  if (!in) fail(path, "read", errno);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError("cannot read the checkpoint '" + path + "': read error");
+  if (in.bad()) throw InputError("cannot read '" + path + "': read error");
   return bytes;
 }
 
-}  // namespace lcprelax::learn::detail
+}  // namespace lcprelax
