@@ -2,7 +2,8 @@
 // (and optionally the static geometry) of a multi-body scene from its transitions.
 //
 //   lcprelax learn scene [--scene FILE.json | --bodies N] [--data TRAJ.csv] [--steps K]
-//       [--classes C] [--method hard|relaxed|convex] [--learn mu,mass,inertia,vertices,ground]
+//       [--classes C] [--method hard|relaxed|convex] [--softening exp|impedance|penalty]
+//       [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs] [--lr α] [--lr-decay d]
 //       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE]
@@ -17,6 +18,9 @@
 // contact steps only. The truth is the scene's parameters; the initial values perturb every
 // learned one by F (perturb_scene_parameters, seed S), or come from an earlier run's JSON
 // result (--init-from). 20% of the transitions (seed S) are held out for validation.
+// --softening (convex only): the normal softening of the convex loss and of the generated
+// data (models/normal_softening.hpp); default the scene's ("softening" in the scene JSON,
+// exp_phi for the learning pile). With --data the data are the file's, whatever it says.
 // Output: JSON (method, true, initial, learned, relative_error maps of the learned
 // parameters, final_loss, epochs, stop_reason, converged, seconds, transitions, islands,
 // contacts, failed_islands, failed); progress per epoch on stderr unless --json; --log the
@@ -45,6 +49,7 @@ struct LearnSceneOptions {
   int steps = 60;
   int classes = 3;
   std::string method = "relaxed";
+  std::string softening;  // empty: the scene's
   std::string learn = "mu,mass,inertia,vertices";
   int epochs = 300;
   LearnStopOptions stop;
@@ -144,6 +149,8 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   ls.convex.phase1_regularization = o.phase1_regularization;  // validated with the settings
   ls.convex.deviation = o.deviation;
   ls.convex.phase1_deviation = o.phase1_deviation;
+  require_option(o.softening.empty() || ls.method == learn::LossMethod::convex, "--softening",
+                 "applies to --method convex only");
   learn::SceneParameterSettings ps;
   ps.learn = learn::parse_scene_learn_flags(o.learn);
   require_option(o.scene.empty() || o.bodies == LearnSceneOptions{}.bodies, "--bodies", "cannot be combined with --scene");
@@ -169,9 +176,14 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   t.optimizer.beta2 = o.beta2;
   apply_learn_checkpoint_options(app, o.checkpoint, t);
 
+  // --softening overrides the scene's for the generated data and the loss.
+  const auto apply_softening = [&o](Scene& scene) {
+    if (!o.softening.empty()) scene.settings.convex_softening.method = parse_normal_softening(o.softening);
+  };
   learn::SceneDataset data;
   if (!o.data.empty()) {
     data = learn::load_scene_dataset(o.scene, o.data, true);
+    apply_softening(data.scene);
   } else {
     Scene scene;
     if (!o.scene.empty()) {
@@ -184,6 +196,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
       pile.model = ls.method == learn::LossMethod::convex ? ContactModel::convex : ContactModel::lcp;
       scene = learn::make_learning_pile(pile);
     }
+    apply_softening(scene);
     learn::SceneDatasetSettings ds;
     ds.steps = o.steps;
     ds.seed = o.seed;
@@ -192,6 +205,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
     data = learn::generate_scene_dataset(scene, ds);
   }
   if (data.transitions.size() < 2) throw InputError("scene data: fewer than 2 transitions with contact");
+  ls.convex.softening.method = data.scene.settings.convex_softening.method;
 
   const learn::SceneParameterMap map(data.scene.world, ps);
   const learn::ParameterSet truth = map.parameters(data.scene.world);
@@ -212,6 +226,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
 
   Json j;
   j["method"] = learn::to_string(ls.method);
+  if (ls.method == learn::LossMethod::convex) j["softening"] = to_string(ls.convex.softening.method);
   j["true"] = values(truth);
   j["initial"] = values(initial);
   j["learned"] = values(theta);
@@ -273,6 +288,10 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--data", o->data, "trajectory CSV of the scene (default: generate)");
   app->add_option("--steps", o->steps, "simulated steps when generating")->capture_default_str();
   app->add_option("--method", o->method, "hard, relaxed or convex")->capture_default_str();
+  app->add_option("--softening", o->softening,
+                  "convex: normal softening of the loss and the generated data: exp (exp(phi)), impedance (MuJoCo) "
+                  "or penalty (default: the scene's)")
+      ->check(CLI::IsMember({"exp", "impedance", "penalty"}));
   app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground")->capture_default_str();
   app->add_option("--epochs", o->epochs, "most training epochs (0: evaluate only)")->capture_default_str();
   add_learn_stop_options(*app, o->stop);

@@ -1,13 +1,17 @@
-// `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex] [--threads T]
-//  [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json] [--export-fc2d FILE]
-//  [--json]` (docs/cli.md): random convex polygons dropped into a container (or a scene
-// file), simulated with models/simulator.hpp.
+// `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex]
+//  [--softening exp|impedance|penalty] [--threads T] [--picture OUT.svg|OUT.png]
+//  [--frames DIR] [--scene FILE.json] [--export-fc2d FILE] [--json]` (docs/cli.md): random
+// convex polygons dropped into a container (or a scene file), simulated with
+// models/simulator.hpp.
 // JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
 // (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
-// potential energy divided by the initial total), plus model, failed_islands, seconds.
+// potential energy divided by the initial total), plus model, softening (convex model only),
+// failed_islands, seconds.
 // Exit status 1 when any island's contact solve failed (it was then solved by the convex
-// fallback, see simulator.cpp), 2 on bad input. --scene FILE: the file's "model" and "steps"
-// hold unless --model / --steps name them. Output paths are checked before the first step;
+// fallback, see simulator.cpp), 2 on bad input. --scene FILE: the file's "model", "softening"
+// and "steps" hold unless --model / --softening / --steps name them. --softening (the convex
+// model's normal softening, models/normal_softening.hpp; JSON "softening" with the convex
+// model) is an error with the lcp model. Output paths are checked before the first step;
 // progress goes to stderr (a status line on a terminal, else a line every 10 s).
 #include "cli_common.hpp"
 
@@ -36,6 +40,7 @@ struct PileCliOptions {
   int bodies = 150;  // with 300 steps about a minute on 2 cores (measured 200 × 300: 112 s)
   int steps = 300;
   std::string model = "convex";
+  std::string softening;  // empty: the scene's (exp_phi for a random pile)
   int threads = 0;
   std::uint64_t seed = 1;
   std::string picture, frames, scene, export_fc2d, color = "contacts";
@@ -86,8 +91,14 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
     scene.settings.model = parse_contact_model(o.model);
     scene.steps = o.steps;
   }
+  if (!o.softening.empty()) {
+    require_option(scene.settings.model == ContactModel::convex, "--softening",
+                   "applies to the convex model only (this run's model is lcp)");
+    scene.settings.convex_softening.method = parse_normal_softening(o.softening);
+  }
   const int steps = scene.steps;
   const std::string model = to_string(scene.settings.model);
+  const std::string softening = to_string(scene.settings.convex_softening.method);
   SimulatorSettings settings;
   settings.threads = o.threads;
   Simulator sim = [&] {
@@ -155,6 +166,7 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   j["max_residual"] = max_res;
   j["max_energy_gain"] = steps > 0 ? number_or_null(max_gain) : Json(0.0);
   j["model"] = model;
+  if (model == "convex") j["softening"] = softening;
   j["failed_islands"] = failed;
   j["inaccurate_islands"] = inaccurate;
   j["seconds"] = seconds;
@@ -178,6 +190,9 @@ Command add_pile_command(CLI::App& parent) {
   app->add_option("--model", o->model, "Contact model: convex (interior point, default) or lcp (Lemke)")
       ->check(CLI::IsMember({"lcp", "convex"}))
       ->capture_default_str();
+  app->add_option("--softening", o->softening,
+                  "convex model's normal softening: exp (exp(phi), default), impedance (MuJoCo) or penalty")
+      ->check(CLI::IsMember({"exp", "impedance", "penalty"}));
   app->add_option("--threads", o->threads, "OpenMP threads over islands (0: default)")->check(CLI::Range(0, 1024));
   app->add_option("--seed", o->seed, "Random seed of the pile")->capture_default_str();
   app->add_option("--scene", o->scene, "Simulate this scene JSON file instead of a random pile");

@@ -36,6 +36,10 @@ fi
 run "$B/run_stiff_report" --csv "$R/stiff_report.csv" > "$R/stiff_report.md"
 run "$B/run_fragility" --csv "$R/fragility.csv" > "$R/fragility.txt"
 run "$B/run_softening" --csv "$R/softening.csv" > "$R/softening.txt"
+mkdir -p "$R/plots"
+run "$B/run_gradient_landscape" --csv "$R/gradient_landscape.csv" --plots "$R/plots" > "$R/gradient_landscape.txt"
+run python3 bench/softening_table.py --landscape "$R/gradient_landscape.csv" --softening "$R/softening.csv" \
+  > "$R/softening_table.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
 run "$B/bench_learn_polygon" --benchmark_min_time=0.5 > "$R/learn_polygon.txt"
 run "$B/run_learn_throughput" --threads 1,2 --csv "$R/learn_throughput.csv" > "$R/learn_throughput.txt"

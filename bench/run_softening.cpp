@@ -87,11 +87,13 @@ int main(int argc, char** argv) {
   for (const auto& [name, scene] : {std::pair<const char*, const Scene*>{"pile", &pile}, {"stack", &stack}})
     for (NormalSoftening m :
          {NormalSoftening::exp_phi, NormalSoftening::linear_penalty, NormalSoftening::mujoco_impedance}) {
-      SimulatorSettings s = scene->settings;
-      s.model = ContactModel::convex;
+      // make_simulator takes dt, model, margin and the softening from the scene, ρ from s.
+      Scene with = *scene;
+      with.settings.model = ContactModel::convex;
+      with.settings.convex_softening.method = m;
+      SimulatorSettings s = with.settings;
       s.convex_rho = rho;
-      s.convex_softening.method = m;
-      const Row r = run(*scene, s, steps);
+      const Row r = run(with, s, steps);
       std::printf("%-6s %-17s %14.4e %16.4e %14.4e %14.4e %7d %8.2f\n", name, to_string(m), r.penetration,
                   r.energy_gain, r.energy_change, r.kinetic, r.failed, r.seconds);
       char line[400];

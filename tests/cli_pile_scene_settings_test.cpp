@@ -61,6 +61,28 @@ TEST_F(CliPileSceneSettings, TheFilesModelAndStepsHoldUnlessAFlagNamesThem) {
   fs::remove(scene);
 }
 
+// The scene file's "softening" holds unless --softening names one; a bad value names the field.
+TEST_F(CliPileSceneSettings, TheFilesSofteningHoldsUnlessTheFlagNamesIt) {
+  const auto scene_with = [](const std::string& name, const std::string& softening) {
+    const std::string path = temp_path(name);
+    std::ofstream(path) << R"({"dt": 0.01, "model": "convex", "softening": ")" << softening
+                        << R"(", "steps": 3, "bodies": [)" << box() << R"(], "half_planes": [{"normal": [0, 1]}]})";
+    return path;
+  };
+  const std::string scene = scene_with("softening_scene.json", "penalty");
+  CliRun r = run_cli("pile --scene '" + scene + "' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["softening"], "linear_penalty");
+  r = run_cli("pile --scene '" + scene + "' --softening impedance --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Json::parse(r.out)["softening"], "mujoco_impedance");
+  const std::string bad = scene_with("bad_softening_scene.json", "soft");
+  r = run_cli("pile --scene '" + bad + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("softening: unknown softening 'soft'"), std::string::npos) << r.err;
+  fs::remove(scene), fs::remove(bad);
+}
+
 TEST_F(CliPileSceneSettings, ExtremeValuesNameTheUsersField) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {box(R"(, "velocity": [1e308, 0])"), "bodies[0].velocity"},

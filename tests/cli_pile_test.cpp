@@ -1,11 +1,16 @@
 // `lcprelax pile` (docs/cli.md): the JSON contract on a small pile with both contact models,
-// a picture file, the fc2d export, a scene file, and bad input (exit 2, only the invalid_input object on stdout).
+// a picture file, the fc2d export, a scene file, --softening reaching the simulator, and bad
+// input (exit 2, only the invalid_input object on stdout).
 #include "cli_support.hpp"
 
 #include <lcprelax/io/siconos_reader.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace lcprelax {
 namespace {
@@ -55,6 +60,37 @@ TEST(CliPileScene, RunsASceneFile) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_GT(j["contacts_max"].get<int>(), 0);
+}
+
+// --softening reaches the convex model: the JSON names the method, and the three methods give
+// three different penetrations on the same pile (a setting that was dropped would give the
+// default's numbers three times).
+TEST(CliPileSoftening, EachMethodReachesTheSimulator) {
+  std::vector<double> penetration;
+  for (const auto& [flag, name] : std::vector<std::pair<std::string, std::string>>{
+           {"", "exp_phi"}, {"penalty", "linear_penalty"}, {"impedance", "mujoco_impedance"}}) {
+    const CliRun r = run_cli("pile --bodies 20 --steps 60 --json" + (flag.empty() ? "" : " --softening " + flag));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["softening"], name);
+    penetration.push_back(j["max_penetration"].get<double>());
+  }
+  EXPECT_NE(penetration[0], penetration[1]);
+  EXPECT_NE(penetration[0], penetration[2]);
+  EXPECT_NE(penetration[1], penetration[2]);
+  // The lcp model has no softening: no field, and the flag is an error (below).
+  const CliRun lcp = run_cli("pile --bodies 5 --steps 2 --model lcp --json");
+  ASSERT_EQ(lcp.exit_code, 0) << lcp.err;
+  EXPECT_FALSE(nlohmann::json::parse(lcp.out).contains("softening"));
+}
+
+TEST(CliPileBadInput, SofteningErrorsNameTheOption) {
+  for (const std::string args : {"pile --steps 1 --softening soft", "pile --steps 1 --model lcp --softening exp"}) {
+    const CliRun r = run_cli(args + " --json");
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_TRUE(invalid_input_json(r.out)) << args << ": " << r.out;
+    EXPECT_NE(r.err.find("--softening"), std::string::npos) << args << ": " << r.err;
+  }
 }
 
 TEST(CliPileBadInput, ExitTwoWithAMessage) {

@@ -4,6 +4,7 @@
 //   final_loss, epochs, stop_reason, seconds, transitions, failed_islands); the CSV log has a
 //   header and one row per epoch; --learn selects the kinds (mu alone: one learned name);
 // - --scene FILE.json generates the data from the file's scene;
+// - --softening (convex) names its method in the JSON and changes the loss;
 // - bad input exits 2 with a message on stderr naming the option, file line or field, and
 //   only the invalid_input object on stdout: an unknown --learn kind, an unknown method, --data without --scene,
 //   a trajectory whose frames have another number of bodies than the scene, a NaN in the
@@ -14,6 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace lcprelax {
 namespace {
@@ -104,6 +108,25 @@ std::string write_trajectory(const std::string& name, int bodies, int frames, bo
           << ((nan_in_frame_1 && f == 1 && b == 1) ? "nan" : "0") << ",0,0\n";
   }
   return path;
+}
+
+// --softening sets the convex loss's softening and the generated data's: the JSON names it,
+// and the loss at the same initial values differs between methods.
+TEST(CliLearnSceneOptions, SofteningReachesTheConvexLoss) {
+  std::vector<double> loss;
+  for (const auto& [flag, name] : std::vector<std::pair<std::string, std::string>>{
+           {"exp", "exp_phi"}, {"penalty", "linear_penalty"}, {"impedance", "mujoco_impedance"}}) {
+    const CliRun r = run_cli("learn scene --scene '" + kStack + "' --steps 20 --learn mu --method convex --softening " +
+                             flag + " --epochs 0 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["softening"], name);
+    loss.push_back(j["final_loss"].get<double>());
+  }
+  EXPECT_NE(loss[0], loss[1]);
+  EXPECT_NE(loss[0], loss[2]);
+  expect_bad_input("learn scene --scene '" + kStack + "' --method relaxed --softening exp --json", "--softening");
+  expect_bad_input("learn scene --scene '" + kStack + "' --method convex --softening soft --json", "--softening");
 }
 
 TEST(CliLearnSceneBadInput, ExitsTwoNamingTheProblem) {

@@ -169,6 +169,17 @@ TEST(SceneJson, ContactModelText) {
   expect_error(edit(R"("model": "convex")", R"("model": "qp")"), {"model: unknown contact model 'qp'"});
 }
 
+// "softening" (the convex model's normal softening) is read, defaults to exp_phi, round-trips,
+// and a bad value names the field.
+TEST(SceneJson, SofteningIsReadAndWritten) {
+  EXPECT_EQ(parse_scene(kBase).settings.convex_softening.method, NormalSoftening::exp_phi);
+  const Scene s = parse_scene(edit(R"("model": "convex")", R"("model": "convex", "softening": "impedance")"));
+  EXPECT_EQ(s.settings.convex_softening.method, NormalSoftening::mujoco_impedance);
+  EXPECT_EQ(parse_scene(write_scene(s)).settings.convex_softening.method, NormalSoftening::mujoco_impedance);
+  expect_error(edit(R"("model": "convex")", R"("model": "convex", "softening": "hard")"),
+               {"softening: unknown softening 'hard'"});
+}
+
 TEST(SceneJson, PolygonErrorsNameTheBody) {
   // The messages are polygon_validation_error's (contact/polygon.hpp), prefixed by the field path.
   expect_error(edit("[[0, 0], [1, 0], [0, 1]]", "[[0, 0], [0, 1], [1, 0]]"),

@@ -3,6 +3,7 @@
 #include <lcprelax/scenes/line_plot.hpp>
 #include <lcprelax/core/errors.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -85,6 +86,64 @@ std::vector<std::string> write_landscape_plot(const std::string& path, const Blo
   o.log_y = false;
   write_line_plot(gpath, gradients, o);
   return {path, gpath};
+}
+
+const char* to_string(GradientSign s) {
+  switch (s) {
+    case GradientSign::correct: return "correct";
+    case GradientSign::wrong: return "wrong";
+    case GradientSign::zero: return "zero";
+    case GradientSign::failed: return "failed";
+  }
+  return "unknown";
+}
+
+GradientSign classify_gradient(const Vector& theta, const Vector& truth, const Vector& gradient, double loss,
+                               double zero_tolerance) {
+  if (theta.size() != truth.size() || theta.size() != gradient.size())
+    throw InputError("classify_gradient: theta, truth and gradient differ in size");
+  if (!std::isfinite(loss) || !gradient.allFinite()) return GradientSign::failed;
+  double dot = 0.0, largest = 0.0;
+  for (Index k = 0; k < theta.size(); ++k) {
+    const double g_xi = theta(k) * gradient(k);  // ∂ℓ/∂log θ_k
+    largest = std::max(largest, std::abs(g_xi));
+    dot += g_xi * (std::log(truth(k)) - std::log(theta(k)));
+  }
+  if (largest <= zero_tolerance * std::abs(loss)) return GradientSign::zero;
+  return dot < 0.0 ? GradientSign::correct : GradientSign::wrong;
+}
+
+namespace {
+// The counter of `s` in `c`.
+template <class Counts>
+auto& counter(Counts& c, GradientSign s) {
+  switch (s) {
+    case GradientSign::correct: return c.correct;
+    case GradientSign::wrong: return c.wrong;
+    case GradientSign::zero: return c.zero;
+    case GradientSign::failed: break;
+  }
+  return c.failed;
+}
+}  // namespace
+
+double GradientSignCounts::fraction(GradientSign s) const {
+  if (points() == 0) return std::nan("");
+  return static_cast<double>(counter(*this, s)) / points();
+}
+
+void GradientSignCounts::add(GradientSign s) { ++counter(*this, s); }
+
+GradientSignCounts count_gradient_signs(const BlockLandscape& L, std::size_t j, double true_mu, double zero_tolerance) {
+  if (j >= L.methods.size()) throw InputError("count_gradient_signs: no method " + std::to_string(j));
+  GradientSignCounts c;
+  for (std::size_t k = 0; k < L.mu.size(); ++k) {
+    if (std::abs(L.mu[k] - true_mu) <= 1e-9 * true_mu) continue;
+    const Vector theta = Vector::Constant(1, L.mu[k]), truth = Vector::Constant(1, true_mu);
+    const Vector g = Vector::Constant(1, L.gradient[j][k]);
+    c.add(L.failed[j][k] > 0 ? GradientSign::failed : classify_gradient(theta, truth, g, L.loss[j][k], zero_tolerance));
+  }
+  return c;
 }
 
 }  // namespace lcprelax::learn

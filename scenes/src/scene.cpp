@@ -17,6 +17,7 @@ Simulator make_simulator(const Scene& scene, SimulatorSettings solver) {
   solver.dt = scene.settings.dt;
   solver.model = scene.settings.model;
   solver.margin = scene.settings.margin;
+  solver.convex_softening = scene.settings.convex_softening;
   return Simulator(scene.world, std::move(solver));
 }
 

@@ -174,7 +174,7 @@ std::vector<T> read_list(const Json& root, const char* key, Read read) {
 
 Scene parse_scene(std::string_view json_text) {
   const Json root = scene_json::parse_json(json_text);
-  scene_json::expect_object(root, "", {"name", "gravity", "dt", "steps", "model", "margin", "friction",
+  scene_json::expect_object(root, "", {"name", "gravity", "dt", "steps", "model", "softening", "margin", "friction",
                                        "bodies", "half_planes", "segments"});
   Scene scene;
   if (const Json* n = find(root, "name")) scene.name = scene_json::string(*n, "name");
@@ -191,6 +191,15 @@ Scene parse_scene(std::string_view json_text) {
       fail("model", model.size() > text::kMaxEchoChars
                         ? "unknown contact model " + text::quote(model) + what.substr(what.rfind(" ("))
                         : what);
+    }
+  }
+  if (const Json* m = find(root, "softening")) {
+    const std::string method = scene_json::string(*m, "softening");
+    try {
+      s.convex_softening.method = parse_normal_softening(method);
+    } catch (const InputError&) {
+      fail("softening", "unknown softening " + text::quote(method) +
+                            " (valid: exp_phi, linear_penalty, mujoco_impedance, or exp, penalty, impedance)");
     }
   }
   if (const Json* m = find(root, "margin")) s.margin = nonnegative(*m, "margin");
@@ -233,6 +242,7 @@ std::string write_scene(const Scene& scene) {
   root["dt"] = scene.settings.dt;
   root["steps"] = scene.steps;
   root["model"] = to_string(scene.settings.model);
+  root["softening"] = to_string(scene.settings.convex_softening.method);
   root["margin"] = scene.settings.margin;
   Json pairs = Json::array();
   for (std::size_t i = 0; i < w.friction.pairs.size(); ++i) {

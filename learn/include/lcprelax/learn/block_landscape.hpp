@@ -3,7 +3,9 @@
 // (learn/block_losses.hpp) over a log-spaced range of μ, written as CSV and drawn as a line
 // plot (scenes/line_plot.hpp). It shows the seeds' point at a glance (Parmar, Halm & Posa,
 // IROS 2021): the hard and convex gradients are exactly 0 for μ above the value at which
-// every sample sticks, the relaxed one is not.
+// every sample sticks, the relaxed one is not. classify_gradient / count_gradient_signs turn
+// a landscape (this one, or a scene's over a box of parameters: bench/run_gradient_landscape)
+// into the fraction of points with a nonzero gradient of the right sign.
 #include <lcprelax/learn/block_losses.hpp>
 
 #include <string>
@@ -36,5 +38,34 @@ void write_landscape_csv(const std::string& path, const BlockLandscape& landscap
 /// without Cairo.
 std::vector<std::string> write_landscape_plot(const std::string& path, const BlockLandscape& landscape,
                                               double true_mu);
+
+/// Where a loss gradient points at one point of a parameter box (issue 20, experiment 3:
+/// the fraction of the box on which gradient descent moves toward the truth).
+enum class GradientSign {
+  correct,  ///< nonzero and −g points toward the truth: g·(θ* − θ) < 0
+  wrong,    ///< nonzero, but −g points away from (or across) the truth
+  zero,     ///< |∂ℓ/∂log θ| ≤ zero_tolerance·|ℓ| in every coordinate (flat: no usable gradient)
+  failed    ///< the loss or gradient is not finite (failed samples)
+};
+const char* to_string(GradientSign s);
+
+/// Classifies one point. `theta`, `truth` > 0 and `gradient` = ∂ℓ/∂θ have one entry per
+/// parameter; the test is made in log coordinates ξ = log θ (the learning's own: a step of
+/// ξ is a relative step of θ), g_ξ = θ ⊙ ∂ℓ/∂θ, "correct" when g_ξ·(ξ* − ξ) < 0. One
+/// parameter: sign(∂ℓ/∂θ) = sign(θ − θ*). Throws InputError on sizes that differ.
+GradientSign classify_gradient(const Vector& theta, const Vector& truth, const Vector& gradient, double loss,
+                               double zero_tolerance);
+
+struct GradientSignCounts {
+  int correct = 0, wrong = 0, zero = 0, failed = 0;
+  int points() const { return correct + wrong + zero + failed; }
+  double fraction(GradientSign s) const;  ///< of points(); NaN when there are none
+  void add(GradientSign s);
+};
+
+/// The counts of method `j` of a block landscape against the true μ (points within a
+/// relative 1e-9 of the truth are skipped: no direction is correct there).
+GradientSignCounts count_gradient_signs(const BlockLandscape& landscape, std::size_t j, double true_mu,
+                                        double zero_tolerance);
 
 }  // namespace lcprelax::learn

@@ -11,7 +11,7 @@ namespace lcprelax {
 
 struct Scene {
   World world;
-  SimulatorSettings settings;  ///< dt, model and margin are read from a scene file
+  SimulatorSettings settings;  ///< dt, model, softening and margin are read from a scene file
   int steps = 100;             ///< number of steps to simulate, ≥ 0
   std::string name;            ///< free text, may be empty
 
@@ -23,9 +23,9 @@ struct Scene {
 /// A simulator of the scene's world with the scene's settings (throws as Simulator does).
 Simulator make_simulator(const Scene& scene);
 
-/// A simulator of the scene's world with `solver`'s settings, except dt, model and margin,
-/// which are the scene's (the scene file's time-stepping choices with the caller's solver
-/// and threading choices).
+/// A simulator of the scene's world with `solver`'s settings, except dt, model, margin and
+/// the convex model's softening (convex_softening), which are the scene's (the scene
+/// file's time-stepping and model choices with the caller's solver and threading choices).
 Simulator make_simulator(const Scene& scene, SimulatorSettings solver);
 
 }  // namespace lcprelax

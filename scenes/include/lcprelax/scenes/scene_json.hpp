@@ -8,6 +8,12 @@
 //     "dt": 0.01,                           // s, > 0, default 0.01
 //     "steps": 100,                         // integer ≥ 0, default 100
 //     "model": "lcp",                       // "lcp" | "convex", default "lcp"
+//     "softening": "exp_phi",               // the convex model's normal softening
+//                                           // (models/normal_softening.hpp): "exp_phi" |
+//                                           // "linear_penalty" | "mujoco_impedance" (or
+//                                           // "exp" | "penalty" | "impedance"), default
+//                                           // "exp_phi" (impedance: MuJoCo's default
+//                                           // solimp/solref)
 //     "margin": 0.01,                       // m, ≥ 0, default 0.01
 //     "friction": {                         // default {"default": 0.5, "pairs": []}
 //       "default": 0.5,                     // μ ≥ 0 for pairs not listed
