@@ -28,24 +28,6 @@ namespace {
 
 using namespace testing_support;
 
-pid_t spawn(const std::string& args) {
-  std::vector<std::string> words{kCli};
-  std::istringstream in(args);
-  for (std::string w; in >> w;) words.push_back(w);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, STDOUT_FILENO);
-    ::dup2(null, STDERR_FILENO);
-    std::vector<char*> argv;
-    for (std::string& w : words) argv.push_back(w.data());
-    argv.push_back(nullptr);
-    ::execv(kCli.c_str(), argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
 bool complete_png(const std::string& path) {
   const std::string bytes = slurp(path);
   static const std::string signature("\x89PNG\r\n\x1a\n", 8);
@@ -75,7 +57,7 @@ TEST(CliPileKill, FramesAndFc2dExportAreNeverHalfWritten) {
     // contacts); a kill lands before, during or after it.
     const std::string args = kFrames && run % 2 == 0 ? "pile --bodies 60 --steps 400 --frames " + dir + " --frame-every 1"
                                           : "pile --bodies 20 --steps 80 --export-fc2d " + fc2d;
-    const pid_t pid = spawn(args);
+    const pid_t pid = spawn_cli(args);
     ASSERT_GT(pid, 0);
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(rng)));
     int status = 0;

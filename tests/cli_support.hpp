@@ -2,6 +2,7 @@
 // Runs the built `lcprelax` executable for the CLI tests: stdout captured by popen, stderr
 // by a temporary file, and the exit code (docs/cli.md: 0 solved, 1 solve failed, 2 bad input;
 // with --json, bad input prints {"status": "invalid_input", "message": ...}).
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace lcprelax::testing_support {
 
@@ -50,6 +53,26 @@ inline CliRun run_cli(const std::string& args) {
   r.err = slurp(err_file);
   fs::remove(err_file);
   return r;
+}
+
+/// Starts `lcprelax <args>` (split on spaces, no shell) in a child process with stdout and
+/// stderr discarded, for the kill tests; returns its pid (the caller waits for or kills it).
+inline pid_t spawn_cli(const std::string& args) {
+  std::vector<std::string> words{kCli};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    std::vector<char*> argv;
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    ::execv(kCli.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
 }
 
 /// Whether `out` is exactly the one JSON object of bad input under --json (docs/cli.md):

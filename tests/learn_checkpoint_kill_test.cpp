@@ -36,25 +36,6 @@ namespace {
 using namespace testing_support;
 using Clock = std::chrono::steady_clock;
 
-// Starts `lcprelax <args>` (split on spaces) with stdout and stderr discarded.
-pid_t spawn(const std::string& args) {
-  std::vector<std::string> words{kCli};
-  std::istringstream in(args);
-  for (std::string w; in >> w;) words.push_back(w);
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, STDOUT_FILENO);
-    ::dup2(null, STDERR_FILENO);
-    std::vector<char*> argv;
-    for (std::string& w : words) argv.push_back(w.data());
-    argv.push_back(nullptr);
-    ::execv(kCli.c_str(), argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
 // The inode of `path` (0 if absent): every atomic checkpoint write replaces it.
 ino_t inode_of(const std::string& path) {
   struct stat st {};
@@ -70,7 +51,7 @@ struct KillPoint {
 // Runs the command with the checkpoint and kills it at `point`; returns false when the run
 // ended by itself first.
 bool run_and_kill(const std::string& args, const std::string& checkpoint, const KillPoint& point) {
-  const pid_t pid = spawn(args);
+  const pid_t pid = spawn_cli(args);
   EXPECT_GT(pid, 0);
   int status = 0;
   ino_t last = inode_of(checkpoint);

@@ -96,11 +96,8 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   // The softening's target velocity lowers both phases' λn terms (0 for exp_phi).
   const NormalSofteningTerms soft = normal_softening_terms(settings.softening, rho, dt, s.phi, s.Jn * s.v_star);
   const NormalSofteningTerms soft1 = phase1_softening_terms(soft);  // max(v_ref, 0)
-  const bool with_ref = (soft1.v_ref.array() != 0.0).any();
-  Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap;
-  if (with_ref) q1 -= soft1.v_ref;
-  if (nc == 0 ||
-      (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0 && (!with_ref || (bn - soft1.v_ref).minCoeff() >= 0.0))) {
+  const Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap - soft1.v_ref;
+  if (nc == 0 || (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0 && (bn - soft1.v_ref).minCoeff() >= 0.0)) {
     r.status = ContactStatus::solved;
     r.v_next = s.v_star;
     r.loss = (s.v_star - target).squaredNorm();

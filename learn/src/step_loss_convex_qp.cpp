@@ -85,8 +85,7 @@ ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r, const NormalS
     p.l = -d.bn;
     p.u = Vector::Constant(nc, kInf);
   }
-  p.q.tail(nc) = s.Jn * d.c + d.gap;
-  if ((softening.v_ref.array() != 0.0).any()) p.q.tail(nc) -= softening.v_ref;
+  p.q.tail(nc) = s.Jn * d.c + d.gap - softening.v_ref;  // v_ref = 0: bitwise unchanged
   p.xl.tail(nc).setZero();
   return out;
 }
@@ -123,8 +122,7 @@ ConvexLossQp convex_loss_phase2(const ConvexLossData& d, const NormalSofteningTe
     p.u(nc + 1 + 2 * f) = 0.0;
     p.l(nc + 2 + 2 * f) = 0.0;
   }
-  p.q.segment(ln, nc) = s.Jn * d.c;
-  if ((soft.v_ref.array() != 0.0).any()) p.q.segment(ln, nc) -= soft.v_ref;
+  p.q.segment(ln, nc) = s.Jn * d.c - soft.v_ref;
   p.q.segment(lt, nf) = s.Jt * d.c;
   p.xl.segment(ln, nc).setZero();
   return out;

@@ -38,8 +38,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // term on λn, and max(v_ref, 0) phase 1's; 0 for exp_phi.
   const NormalSofteningTerms soft = normal_softening_terms(softening, rho, dt, s.phi, vn);
   const NormalSofteningTerms soft1 = phase1_softening_terms(soft);
-  const bool with_ref = (soft1.v_ref.array() != 0.0).any();
-  if (nc == 0 || (bn.minCoeff() >= 0.0 && (!with_ref || (bn - soft1.v_ref).minCoeff() >= 0.0))) {
+  if (nc == 0 || (bn.minCoeff() >= 0.0 && (bn - soft1.v_ref).minCoeff() >= 0.0)) {
     out.status = ContactStatus::solved;
     out.lambda_n = Vector::Zero(nc);
     out.lambda_t = Vector::Zero(nf);

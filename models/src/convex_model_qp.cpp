@@ -70,8 +70,7 @@ ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTe
     out.lambda_offset = nv;
   }
   QpProblem& p = out.problem;
-  p.q.tail(nc) = d.bn;
-  if ((soft.v_ref.array() != 0.0).any()) p.q.tail(nc) -= soft.v_ref;
+  p.q.tail(nc) = d.bn - soft.v_ref;  // v_ref = 0 (exp_phi) leaves bn bitwise unchanged
   p.xl.tail(nc).setZero();
   return out;
 }
@@ -101,8 +100,7 @@ ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTe
       for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
         if (it.row() < nc) g.emplace_back(it.row(), c, it.value());
   }
-  p.q.segment(ln, nc) = s.Jn * s.v_star;
-  if ((soft.v_ref.array() != 0.0).any()) p.q.segment(ln, nc) -= soft.v_ref;
+  p.q.segment(ln, nc) = s.Jn * s.v_star - soft.v_ref;
   p.q.segment(lt, nf) = s.Jt * s.v_star;
   append_friction_cone_rows(s, ln, lt, g);
   p.G = from_triplets(m, n, g);
