@@ -2,28 +2,38 @@
 // the island data (step_loss_convex_qp.hpp; formulas in step_loss_convex.hpp).
 #include "step_loss_convex_qp.hpp"
 
-#include <lcprelax/models/convex_qp_rows.hpp>
 #include <lcprelax/sparse/triplets.hpp>
 
 #include <cmath>
-#include <limits>
+#include <utility>
 #include <vector>
 
 namespace lcprelax::learn::detail {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Non-penetration rows 0..nc: Wn λ (dual: W's entries in rows < nc and columns < `cols`)
-// or Jn Δv (lifted).
-void contact_rows(const ConvexLossData& d, Index cols, std::vector<Triplet>& g) {
-  if (d.lifted) {
-    append_triplets(g, d.s.Jn, 0, 0, 1.0);
-    return;
+lcprelax::detail::ConvexPhaseQp build(bool phase1, const ConvexLossData& d, double r,
+                                      const NormalSofteningTerms& softening) {
+  lcprelax::detail::ConvexPhaseTerms terms;
+  terms.hessian_scale = 1.0 + d.w;
+  if (phase1) {
+    terms.qn = &d.qn1;
+    terms.regularization = r;
+    // Wnn λn + bn ≥ 0: implied by optimality when w = 0 (and then weakly active wherever
+    // λn > 0, a degenerate row the adjoint would only interpolate), so posed only for w > 0.
+    terms.contact_rows = d.w > 0.0;
+    return lcprelax::detail::convex_phase1_qp(d.model, softening, terms);
   }
-  for (Index c = 0; c < cols; ++c)
-    for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
-      if (it.row() < d.nc) g.emplace_back(it.row(), c, it.value());
+  terms.qn = &d.qn2;
+  terms.qt = &d.qt2;
+  return lcprelax::detail::convex_phase2_qp(d.model, softening, terms);
+}
+
+ConvexLossQp as_loss_qp(lcprelax::detail::ConvexPhaseQp&& qp, const NormalSofteningTerms& softening) {
+  ConvexLossQp out;
+  out.problem = std::move(qp.problem);
+  out.lambda_offset = qp.lambda_offset;
+  out.softening = softening;
+  return out;
 }
 
 }  // namespace
@@ -38,94 +48,26 @@ SparseMatrix zero_like(const SparseMatrix& A) {
 ConvexLossData::ConvexLossData(const ContactSystem& system, const Vector& target, double dt_in, double w_in,
                                bool lifted_in)
     : s(system), dt(dt_in), w(w_in), lifted(lifted_in), nc(system.num_contacts()), nf(system.num_friction()),
-      nv(system.num_dofs()) {
-  gap = s.phi.cwiseMax(0.0) / dt;
-  bn = s.Jn * s.v_star + gap;
-  c = (1.0 + w) * s.v_star - w * target;
-  w_nn = Vector::Zero(nc);
-  for (Index j = 0; j < s.Jn.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) w_nn(it.row()) += it.value() * it.value() * s.minv(j);
+      nv(system.num_dofs()), gap(system.phi.cwiseMax(0.0) / dt_in),
+      c((1.0 + w_in) * system.v_star - w_in * target), qn1(system.Jn * c + gap), qn2(system.Jn * c),
+      qt2(system.Jt * c),
+      model(system, system.Jn * system.v_star + gap,
+            lifted_in ? ConvexFormulation::lifted : ConvexFormulation::dual),
+      bn(model.bn), w_nn(model.w_nn), W(model.W) {
   if (!lifted) {
     std::vector<Triplet> t;
     append_triplets(t, s.Jn, 0, 0, 1.0);
     append_triplets(t, s.Jt, nc, 0, 1.0);
     J = from_triplets(nc + nf, nv, t);
-    W = delassus(s);
-    W.makeCompressed();
   }
 }
 
 ConvexLossQp convex_loss_phase1(const ConvexLossData& d, double r, const NormalSofteningTerms& softening) {
-  const ContactSystem& s = d.s;
-  const Index nc = d.nc, nv = d.nv;
-  ConvexLossQp out;
-  out.softening = softening;
-  std::vector<Triplet> g;
-  if (!d.lifted) {
-    out.problem = QpProblem(nc);
-    const SparseMatrix Wnn = d.W.topLeftCorner(nc, nc);
-    SparseMatrix P = (1.0 + d.w) * Wnn;
-    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += r * d.w_nn(i);
-    out.problem.P = upper_triangle(P);
-  } else {  // x = (Δv, λn): ½(1+w)ΔvᵀMΔv, M Δv = Jnᵀλn
-    out.problem = QpProblem(nv + nc);
-    std::vector<Triplet> t;
-    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
-    for (Index i = 0; i < nc; ++i) t.emplace_back(nv + i, nv + i, r * d.w_nn(i));
-    out.problem.P = from_triplets(nv + nc, nv + nc, t);
-    lifted_momentum_equality(s, /*friction=*/false, out.problem);
-    out.lambda_offset = nv;
-  }
-  QpProblem& p = out.problem;
-  // Wnn λn + bn ≥ 0: implied by optimality when w = 0 (and then weakly active wherever
-  // λn > 0, a degenerate row the adjoint would only interpolate), so posed only for w > 0.
-  if (d.w > 0.0) {
-    contact_rows(d, nc, g);
-    p.G = from_triplets(nc, p.num_variables(), g);
-    p.l = -d.bn;
-    p.u = Vector::Constant(nc, kInf);
-  }
-  p.q.tail(nc) = s.Jn * d.c + d.gap - softening.v_ref;  // v_ref = 0: bitwise unchanged
-  p.xl.tail(nc).setZero();
-  return out;
+  return as_loss_qp(build(true, d, r, softening), softening);
 }
 
 ConvexLossQp convex_loss_phase2(const ConvexLossData& d, const NormalSofteningTerms& softening) {
-  const ContactSystem& s = d.s;
-  const Index nc = d.nc, nf = d.nf, nv = d.nv;
-  const Index ln = d.lifted ? nv : 0, lt = ln + nc, n = lt + nf, m = nc + 1 + 2 * nf;
-  ConvexLossQp out;
-  out.softening = softening;
-  const NormalSofteningTerms& soft = out.softening;
-  out.problem = QpProblem(n);
-  out.lambda_offset = ln;
-  QpProblem& p = out.problem;
-  if (d.lifted) {
-    std::vector<Triplet> t;
-    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, (1.0 + d.w) / s.minv(i));
-    for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, soft.g(i) * d.w_nn(i));
-    p.P = from_triplets(n, n, t);
-    lifted_momentum_equality(s, /*friction=*/true, p);
-  } else {
-    SparseMatrix P = (1.0 + d.w) * d.W;
-    for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += soft.g(i) * d.w_nn(i);
-    p.P = upper_triangle(P);
-  }
-  std::vector<Triplet> g;
-  contact_rows(d, n, g);
-  append_friction_cone_rows(s, ln, lt, g);  // eᵀλn ≤ κ, λt ∓ μλn
-  p.G = from_triplets(m, n, g);
-  p.l = Vector::Constant(m, -kInf);
-  p.u = Vector::Constant(m, kInf);
-  p.l.head(nc) = -d.bn;
-  for (Index f = 0; f < nf; ++f) {
-    p.u(nc + 1 + 2 * f) = 0.0;
-    p.l(nc + 2 + 2 * f) = 0.0;
-  }
-  p.q.segment(ln, nc) = s.Jn * d.c - soft.v_ref;
-  p.q.segment(lt, nf) = s.Jt * d.c;
-  p.xl.segment(ln, nc).setZero();
-  return out;
+  return as_loss_qp(build(false, d, 0.0, softening), softening);
 }
 
 ConvexLossPullback::ConvexLossPullback(const ConvexLossData& data)

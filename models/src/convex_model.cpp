@@ -1,5 +1,5 @@
 // The convex two-phase contact model (contact_step.hpp), solved by the interior-point QP.
-#include "convex_model_qp.hpp"
+#include <lcprelax/models/convex_phase_qp.hpp>
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>

@@ -26,7 +26,7 @@
 //   either of phase 1's terms (bn ≥ 0 and Jn c + max(φ,0)/Δt ≥ 0) λ = 0 exactly (phase 1's
 //   optimum is 0, so κ = 0) and ℓ = ‖v* − v̄‖², answered without a solve.
 //
-// Formulations (ConvexFormulation, as models/src/convex_model_qp.hpp):
+// Formulations (ConvexFormulation, as models/convex_phase_qp.hpp):
 //   dual:   x = λ; Hessians (1+w)W (+ the ρ diagonal); non-penetration rows Wn λ ≥ −bn.
 //   lifted: x = (Δv, λ) with the equality M Δv − Jᵀλ = 0; ½(1+w)λᵀWλ = ½(1+w)ΔvᵀMΔv and
 //           the non-penetration rows are Jn Δv ≥ −bn, so W is never formed: the KKT matrix

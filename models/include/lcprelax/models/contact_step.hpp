@@ -123,7 +123,7 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm = {});
 
-/// How the convex model's QPs are posed (models/src/convex_model_qp.hpp): `dual` in
+/// How the convex model's QPs are posed (models/convex_phase_qp.hpp): `dual` in
 /// the impulses λ with the Delassus matrix W = J M⁻¹ Jᵀ; `lifted` in (Δv, λ) with the
 /// equality M Δv = Jᵀ λ, whose KKT matrix holds only M and the Jacobians (less fill on
 /// large islands); `automatic`: lifted from kLiftedMinContacts contacts on. Both give the

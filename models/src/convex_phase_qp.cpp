@@ -1,15 +1,18 @@
-// The convex model's phase QPs in the dual and the lifted formulation (convex_model_qp.hpp).
-#include "convex_model_qp.hpp"
-
-#include <lcprelax/models/convex_qp_rows.hpp>
+// The convex model's phase QPs in the dual and the lifted formulation (convex_phase_qp.hpp).
+#include <lcprelax/models/convex_phase_qp.hpp>
 #include <lcprelax/sparse/triplets.hpp>
 
 #include <cmath>
 #include <limits>
 #include <vector>
 
-namespace lcprelax {
+namespace lcprelax::detail {
+namespace {
 
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The lifted momentum equality M w − Jnᵀλn (− Jtᵀλt when `friction`) = 0 as p.A, p.b, with
+// w (3 per body) first in x, λn from column nv, λt from nv + nc (M = diag(1/minv)).
 void lifted_momentum_equality(const ContactSystem& s, bool friction, QpProblem& p) {
   const Index nv = s.num_dofs(), nc = s.num_contacts();
   std::vector<Triplet> t;
@@ -20,6 +23,20 @@ void lifted_momentum_equality(const ContactSystem& s, bool friction, QpProblem& 
   p.b = Vector::Zero(nv);
 }
 
+// Rows 0..nc, non-penetration: Jn w (lifted) or W's entries in rows < nc and columns < `cols`.
+void append_contact_rows(const ConvexModelData& d, Index cols, std::vector<Triplet>& g) {
+  const Index nc = d.s.num_contacts();
+  if (d.lifted()) {
+    append_triplets(g, d.s.Jn, 0, 0, 1.0);
+    return;
+  }
+  for (Index c = 0; c < cols; ++c)
+    for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
+      if (it.row() < nc) g.emplace_back(it.row(), c, it.value());
+}
+
+// The rows after the nc contact rows: eᵀλn ≤ κ (row nc), then λt − μλn ≤ 0 and
+// λt + μλn ≥ 0 per friction row; λn starts at column `ln`, λt at `lt`.
 void append_friction_cone_rows(const ContactSystem& s, Index ln, Index lt, std::vector<Triplet>& t) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   for (Index i = 0; i < nc; ++i) t.emplace_back(nc, ln + i, 1.0);
@@ -30,13 +47,6 @@ void append_friction_cone_rows(const ContactSystem& s, Index ln, Index lt, std::
     t.emplace_back(nc + 2 + 2 * f, ln + s.friction_rows[f], s.mu(f));
   }
 }
-
-}  // namespace lcprelax
-
-namespace lcprelax::detail {
-namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -51,57 +61,74 @@ ConvexModelData::ConvexModelData(const ContactSystem& system, const Vector& bn_i
   w_nn = Vector::Zero(nc);
   for (Index j = 0; j < s.Jn.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) w_nn(it.row()) += it.value() * it.value() * s.minv(j);
-  if (form == ConvexFormulation::dual) W = delassus(s);
+  if (form == ConvexFormulation::dual) {
+    W = delassus(s);
+    W.makeCompressed();
+  }
 }
 
-ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& soft) {
+ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& soft,
+                               const ConvexPhaseTerms& terms) {
   const ContactSystem& s = d.s;
   const Index nc = s.num_contacts(), nv = s.num_dofs();
+  const double scale = terms.hessian_scale, r = terms.regularization;
   ConvexPhaseQp out;
-  if (d.form == ConvexFormulation::dual) {
+  if (!d.lifted()) {
     out.problem = QpProblem(nc);
-    out.problem.P = upper_triangle(d.W.topLeftCorner(nc, nc));
-  } else {  // x = (w, λn): ½ wᵀ M w + bnᵀ λn, M w = Jnᵀ λn
+    SparseMatrix P = d.W.topLeftCorner(nc, nc);
+    if (scale != 1.0) P *= scale;
+    if (r > 0.0)
+      for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += r * d.w_nn(i);
+    out.problem.P = upper_triangle(P);
+  } else {  // x = (w, λn): ½ s wᵀ M w + ½ r Σ Wnn_ii λn_i² + qnᵀ λn, M w = Jnᵀ λn
     out.problem = QpProblem(nv + nc);
     std::vector<Triplet> t;
-    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, scale / s.minv(i));
+    if (r > 0.0)
+      for (Index i = 0; i < nc; ++i) t.emplace_back(nv + i, nv + i, r * d.w_nn(i));
     out.problem.P = from_triplets(nv + nc, nv + nc, t);
     lifted_momentum_equality(s, /*friction=*/false, out.problem);
     out.lambda_offset = nv;
   }
   QpProblem& p = out.problem;
-  p.q.tail(nc) = d.bn - soft.v_ref;  // v_ref = 0 (exp_phi) leaves bn bitwise unchanged
+  if (terms.contact_rows) {
+    std::vector<Triplet> g;
+    append_contact_rows(d, nc, g);
+    p.G = from_triplets(nc, p.num_variables(), g);
+    p.l = -d.bn;
+    p.u = Vector::Constant(nc, kInf);
+  }
+  // v_ref = 0 (exp_phi) leaves the linear term bitwise unchanged.
+  p.q.tail(nc) = (terms.qn ? *terms.qn : d.bn) - soft.v_ref;
   p.xl.tail(nc).setZero();
   return out;
 }
 
-ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& soft) {
+ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& soft,
+                               const ConvexPhaseTerms& terms) {
   const ContactSystem& s = d.s;
   const Index nc = s.num_contacts(), nf = s.num_friction(), nv = s.num_dofs();
-  const bool lifted = d.form == ConvexFormulation::lifted;
+  const bool lifted = d.lifted();
+  const double scale = terms.hessian_scale;
   const Index ln = lifted ? nv : 0, lt = ln + nc, n = lt + nf, m = nc + 1 + 2 * nf;
   ConvexPhaseQp out;
   out.problem = QpProblem(n);
   out.lambda_offset = ln;
   QpProblem& p = out.problem;
-  std::vector<Triplet> g;  // rows 0..nc: Jn v⁺ + max(φ,0)/Δt ≥ 0, i.e. (Jn w or Wn λ) ≥ −bn
   if (lifted) {
     std::vector<Triplet> t;
-    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, 1.0 / s.minv(i));
+    for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, scale / s.minv(i));
     for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, soft.g(i) * d.w_nn(i));
     p.P = from_triplets(n, n, t);
     lifted_momentum_equality(s, /*friction=*/true, p);
-    append_triplets(g, s.Jn, 0, 0, 1.0);
   } else {
     SparseMatrix P = d.W;
+    if (scale != 1.0) P *= scale;
     for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += soft.g(i) * d.w_nn(i);
     p.P = upper_triangle(P);
-    for (Index c = 0; c < n; ++c)
-      for (SparseMatrix::InnerIterator it(d.W, c); it; ++it)
-        if (it.row() < nc) g.emplace_back(it.row(), c, it.value());
   }
-  p.q.segment(ln, nc) = s.Jn * s.v_star - soft.v_ref;
-  p.q.segment(lt, nf) = s.Jt * s.v_star;
+  std::vector<Triplet> g;
+  append_contact_rows(d, n, g);
   append_friction_cone_rows(s, ln, lt, g);
   p.G = from_triplets(m, n, g);
   p.l = Vector::Constant(m, -kInf);
@@ -111,6 +138,14 @@ ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTe
     p.u(nc + 1 + 2 * f) = 0.0;
     p.l(nc + 2 + 2 * f) = 0.0;
   }
+  if (terms.qn)
+    p.q.segment(ln, nc) = *terms.qn - soft.v_ref;
+  else
+    p.q.segment(ln, nc) = s.Jn * s.v_star - soft.v_ref;
+  if (terms.qt)
+    p.q.segment(lt, nf) = *terms.qt;
+  else
+    p.q.segment(lt, nf) = s.Jt * s.v_star;
   p.xl.segment(ln, nc).setZero();
   return out;
 }

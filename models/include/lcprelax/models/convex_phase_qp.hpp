@@ -1,6 +1,8 @@
 #pragma once
-// The two interior-point QPs of the convex contact model (contact_step.hpp), built in one
-// of two equivalent formulations (ConvexFormulation):
+// The two interior-point QPs of the convex contact model (contact_step.hpp), the one
+// assembly used by the simulator (models/src/convex_model.cpp) and by the convex learning
+// loss (learn/step_loss_convex.hpp), in one of two equivalent formulations
+// (ConvexFormulation):
 //
 // dual: the unknowns are the impulses only, x = (λn, λt), and the Hessian is the Delassus
 //   matrix W = J M⁻¹ Jᵀ. Smallest problem, but W couples every pair of contacts that share
@@ -19,8 +21,19 @@
 // Both have the same optimum in λn, λt and v⁺ (v⁺ is unique; λ is unique where the ρ term
 // and W make it so): the equality only names J M⁻¹ Jᵀ λ. Phase 2's row `nc` is eᵀλn ≤ κ
 // in both; the caller sets its upper bound u(nc).
+//
+// ConvexPhaseTerms holds what the learning loss changes (its defaults are the simulator's
+// QPs, built bitwise as without them): the quadratic term scaled by s = 1 + w (the L2
+// deviation penalty's curvature), other linear terms (J c in place of J v*), phase 1's
+// regularization ½ r Σ Wnn_ii λn_i², and phase 1's non-penetration rows.
+//
+// Rows of phase 2 (m = nc + 1 + 2 nf): 0..nc non-penetration (Wn λ or Jn w) ≥ −bn; nc:
+// eᵀλn ≤ κ; per friction row f: λt_f − μ_f λn ≤ 0 (row nc + 1 + 2f) and λt_f + μ_f λn ≥ 0
+// (row nc + 2 + 2f). Units: impulses N·s, velocities m/s (rad/s), bn m/s.
 #include <lcprelax/kkt/qp_problem.hpp>
 #include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/contact_system.hpp>
+#include <lcprelax/models/normal_softening.hpp>
 
 namespace lcprelax::detail {
 
@@ -44,14 +57,26 @@ struct ConvexModelData {
   Vector bn;               ///< Jn v* + max(φ, 0)/Δt (m/s)
   Vector w_nn;             ///< diag(Wnn) = diag(Jn M⁻¹ Jnᵀ) (1/kg)
   SparseMatrix W;          ///< J M⁻¹ Jᵀ, rows and columns (contacts, friction rows); dual only
+  bool lifted() const { return form == ConvexFormulation::lifted; }
 };
 
-/// Phase 1: min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ (bn − v_ref), v_ref the softening's target
-/// velocity (0 for exp_phi).
-ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& softening);
+/// Departures from the simulator's phase QPs (the defaults leave them unchanged).
+struct ConvexPhaseTerms {
+  double hessian_scale = 1.0;   ///< s: ½ s λᵀWλ (dual) or ½ s wᵀMw (lifted), s > 0
+  const Vector* qn = nullptr;   ///< λn's linear term before −v_ref (default: phase 1 bn, phase 2 Jn v*)
+  const Vector* qt = nullptr;   ///< λt's linear term (phase 2; default Jt v*)
+  double regularization = 0.0;  ///< phase 1: r ≥ 0 of ½ r Σ Wnn_ii λn_i²
+  bool contact_rows = false;    ///< phase 1: pose Wnn λn + bn ≥ 0 (or Jn w + bn ≥ 0) as rows 0..nc
+};
+
+/// Phase 1: min_{λn ≥ 0} ½ s λnᵀ Wnn λn + ½ r Σ Wnn_ii λn_i² + λnᵀ (qn − v_ref), v_ref the
+/// softening's target velocity (0 for exp_phi), qn = bn by default.
+ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& softening,
+                               const ConvexPhaseTerms& terms = {});
 
 /// Phase 2 (contact_step.hpp) with u(nc) = +∞ for eᵀλn ≤ κ (the caller sets it), with the
 /// normal softening's terms (normal_softening.hpp): ½ Σ g_i Wnn_i λn_i² − λnᵀ v_ref.
-ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& softening);
+ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& softening,
+                               const ConvexPhaseTerms& terms = {});
 
 }  // namespace lcprelax::detail
