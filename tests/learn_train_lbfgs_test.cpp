@@ -8,6 +8,9 @@
 //   rate has not converged;
 // - on a kinked loss |x − c| the line search fails at the kink and ends the run with its
 //   own stop reason (no endless creeping at the noise floor);
+// - on Lewis and Overton's nonsmooth Rosenbrock function 8|x² − y| + (1 − x)², whose
+//   minimum (1, 1) lies on the kink x² = y, the weak Wolfe line search lets BFGS follow the
+//   kink to 1e-4 (a backtracking Armijo search stops at the kink, far from the minimum);
 // - mini-batches and Optimizer::step are refused.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/trainer.hpp>
@@ -47,6 +50,23 @@ class Kink : public Objective {
     SampleResult r;
     r.loss = std::abs(d);
     r.gradient = Vector::Constant(1, d >= 0 ? 1.0 : -1.0);  // a subgradient, never 0
+    return r;
+  }
+};
+
+// Lewis & Overton, "Nonsmooth optimization via quasi-Newton methods", Math. Programming
+// 141 (2013), §6: ℓ(x, y) = 8|x² − y| + (1 − x)², minimum 0 at (1, 1), on the kink.
+class NonsmoothRosenbrock : public Objective {
+ public:
+  Index num_samples() const override { return 1; }
+  SampleResult evaluate(Index, const ParameterSet& theta, int) override {
+    const double x = theta[0].value, y = theta[1].value, k = x * x - y;
+    const double sign = k >= 0 ? 1.0 : -1.0;
+    SampleResult r;
+    r.loss = 8.0 * std::abs(k) + (1.0 - x) * (1.0 - x);
+    r.gradient.resize(2);
+    r.gradient(0) = 16.0 * sign * x - 2.0 * (1.0 - x);
+    r.gradient(1) = -8.0 * sign;
     return r;
   }
 };
@@ -151,6 +171,18 @@ TEST(TrainLbfgs, AKinkEndsTheRunWithItsOwnReason) {
   EXPECT_EQ(r.stop_reason.rfind("lbfgs line search found no decrease", 0), 0u) << r.stop_reason;
   EXPECT_LT(static_cast<int>(r.history.size()), 200);
   EXPECT_NEAR(theta[0].value, kKink, 1e-6);
+}
+
+TEST(TrainLbfgs, FollowsAKinkToTheMinimumOnNonsmoothRosenbrock) {
+  NonsmoothRosenbrock f;
+  ParameterSet theta({Parameter{"x", -0.9}, Parameter{"y", 1.5}});
+  TrainSettings t = full_batch(OptimizerKind::lbfgs);
+  t.epochs = 500;
+  const TrainResult r = train(f, theta, samples(1), {}, t);
+  std::printf("nonsmooth Rosenbrock: %zu epochs, %s, (x, y) = (%.8f, %.8f)\n", r.history.size(),
+              r.stop_reason.c_str(), theta[0].value, theta[1].value);
+  EXPECT_NEAR(theta[0].value, 1.0, 1e-4);
+  EXPECT_NEAR(theta[1].value, 1.0, 1e-4);
 }
 
 TEST(TrainLbfgs, RefusesMiniBatchesAndPlainSteps) {
