@@ -7,7 +7,10 @@
 # Environment: FUZZ_BUILD_DIR (default <repo>/build-fuzz), FUZZ_TARGETS (space-separated
 # subset of the targets), FUZZ_JOBS (parallel build jobs, default 2), FUZZ_RUNS (also stop a
 # target after this many executions, e.g. 1000000; default: time only), FUZZ_TIMEOUT
-# (seconds per input taken as a hang, default 1; a loaded machine may need 3).
+# (seconds per input taken as a hang, default 1; a loaded machine may need 3), FUZZ_PARALLEL
+# (targets run at the same time, default 1). A FUZZ_BUILD_DIR that is already configured
+# with LCPRELAX_FUZZ=ON (scripts/sanitize.sh's tree, where clang is installed) is used as
+# it is: only the fuzz targets are built there.
 # Corpora live in $FUZZ_BUILD_DIR/corpus/<target>/ (seeded from tests/data on each run, and
 # kept between runs); crashes in $FUZZ_BUILD_DIR/artifacts/, logs in $FUZZ_BUILD_DIR/logs/.
 # Prints the executions of each target and exits 1 if any target found a crash, a hang
@@ -23,10 +26,14 @@ TIMEOUT=${FUZZ_TIMEOUT:-1}
 ALL_TARGETS="fuzz_qps fuzz_siconos_lcp fuzz_siconos_fc2d fuzz_matrix_market fuzz_scene_json fuzz_trajectory_csv fuzz_qp_solve"
 TARGETS=${FUZZ_TARGETS:-$ALL_TARGETS}
 
-cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLCPRELAX_FUZZ=ON \
-  -DLCPRELAX_BUILD_TESTS=OFF -DLCPRELAX_BUILD_BENCH=OFF -DLCPRELAX_BUILD_APPS=OFF \
-  -DLCPRELAX_WITH_OPENMP=OFF -DLCPRELAX_WITH_PETSC=OFF -DLCPRELAX_WITH_CAIRO=OFF >/dev/null
+PARALLEL=${FUZZ_PARALLEL:-1}
+
+if ! grep -q '^LCPRELAX_FUZZ:BOOL=ON' "$BUILD/CMakeCache.txt" 2>/dev/null; then
+  cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLCPRELAX_FUZZ=ON \
+    -DLCPRELAX_BUILD_TESTS=OFF -DLCPRELAX_BUILD_BENCH=OFF -DLCPRELAX_BUILD_APPS=OFF \
+    -DLCPRELAX_WITH_OPENMP=OFF -DLCPRELAX_WITH_PETSC=OFF -DLCPRELAX_WITH_CAIRO=OFF >/dev/null
+fi
 # shellcheck disable=SC2086
 cmake --build "$BUILD" -j "$JOBS" --target $TARGETS
 
@@ -60,21 +67,36 @@ dict_of() {
 }
 
 mkdir -p "$BUILD/artifacts" "$BUILD/logs"
-status=0
-for t in $TARGETS; do
-  log=$BUILD/logs/$t.log
-  max_len=65536
+# run TARGET: runs one target; its verdict goes to logs/TARGET.result.
+run() {
+  local t=$1 log=$BUILD/logs/$1.log max_len=65536
   [ "$t" = fuzz_qp_solve ] && max_len=8192
-  echo "== $t: ${SECONDS_PER_TARGET} s"
   if "$BUILD/tests/fuzz/$t" "$BUILD/corpus/$t" -dict="$ROOT/tests/fuzz/$(dict_of "$t")" \
       -max_total_time="$SECONDS_PER_TARGET" -runs="$RUNS" -rss_limit_mb=2048 -timeout="$TIMEOUT" -max_len=$max_len \
       -artifact_prefix="$BUILD/artifacts/$t-" -print_final_stats=1 >"$log" 2>&1; then
-    result=ok
+    echo ok >"$BUILD/logs/$t.result"
   else
-    result=FAILED
-    status=1
+    echo FAILED >"$BUILD/logs/$t.result"
   fi
-  execs=$(grep -m1 'stat::number_of_executed_units' "$log" | awk '{print $2}')
-  echo "   $result: ${execs:-?} executions (log: $log)"
+}
+echo "== ${SECONDS_PER_TARGET} s per target, $PARALLEL at a time: $TARGETS"
+running=0
+for t in $TARGETS; do
+  rm -f "$BUILD/logs/$t.result"
+  run "$t" &
+  running=$((running + 1))
+  if [ "$running" -ge "$PARALLEL" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait
+status=0
+for t in $TARGETS; do
+  result=$(cat "$BUILD/logs/$t.result" 2>/dev/null || echo FAILED)
+  [ "$result" = ok ] || status=1
+  execs=$(grep -m1 'stat::number_of_executed_units' "$BUILD/logs/$t.log" | awk '{print $2}' || true)
+  echo "   $t: $result, ${execs:-?} executions (log: $BUILD/logs/$t.log)"
+  if [ "$result" != ok ]; then tail -n 30 "$BUILD/logs/$t.log"; fi
 done
 exit $status
