@@ -1,7 +1,7 @@
 // `lcprelax learn block [--method hard|relaxed|convex] [--init-mu X] [--true-mu X]
 //  [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T] [--samples S] [--seed K] [--noise σ]
 //  [--slip-max X] [--data FILE.csv] [--mg X] [--mass X] [--learn-mass] [--learn-mg]
-//  [--optimizer sgd|adam|lbfgs] [--lr α] [--momentum β] [--soft-nonnegativity] [--soft-lambdas]
+//  [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--momentum β] [--soft-nonnegativity] [--soft-lambdas]
 //  [--l1-softness] [--max-dissipation none|qp|ext] [--a1 … --a5] [--regularization ε]
 //  [--log FILE.csv] [--checkpoint FILE] [--resume FILE]
 //  [--landscape OUT] [--json]` (docs/cli.md): learns the friction coefficient of the seeds'
@@ -225,7 +225,7 @@ Command add_learn_block_command(CLI::App& learn) {
   app->add_option("--mass", o->mass, "mass, kg")->capture_default_str();
   app->add_flag("--learn-mass", o->learn_mass, "learn the mass too");
   app->add_flag("--learn-mg", o->learn_mg, "learn m·g too");
-  app->add_option("--optimizer", o->optimizer, "sgd, adam or lbfgs (L-BFGS with a line search; full batch only)")->capture_default_str();
+  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_option("--lr", o->lr, "learning rate (on log μ)")->capture_default_str();
   app->add_option("--momentum", o->momentum, "SGD momentum")->capture_default_str();
   app->add_flag("--soft-nonnegativity", o->soft_nonnegativity, "relaxed: Mλ + q + s ≥ 0");

@@ -5,7 +5,7 @@
 //   lcprelax learn polygon [--method hard|relaxed|convex] [--epochs E] [--rel-loss-tol R]
 //       [--grad-tol G] [--patience P] [--batch B]
 //       [--threads T] [--samples S] [--seed K] [--noise σ] [--data-model lcp|convex] [--perturb F]
-//       [--learn mu,mass,inertia,vertices,ground] [--optimizer sgd|adam|lbfgs] [--lr α]
+//       [--learn mu,mass,inertia,vertices,ground] [--optimizer sgd|adam|lbfgs|lm] [--lr α]
 //       [--lr-decay d] [--log FILE.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE] [--resume FILE] [--json]
 //
 // Ground truth: the quadrilateral with vertices (−0.30, −0.22), (0.34, −0.18), (0.26, 0.24),
@@ -217,7 +217,7 @@ Command add_learn_polygon_command(CLI::App& learn) {
       ->capture_default_str();
   app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
   app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground")->capture_default_str();
-  app->add_option("--optimizer", o->optimizer, "sgd, adam or lbfgs (L-BFGS with a line search; full batch only)")->capture_default_str();
+  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia, metres, radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");

@@ -5,7 +5,7 @@
 //       [--classes C] [--method hard|relaxed|convex] [--softening exp|impedance|penalty]
 //       [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
-//       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs] [--lr α] [--lr-decay d]
+//       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--lr-decay d]
 //       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE]
 //       [--resume FILE] [--json]
 //
@@ -302,7 +302,7 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
   app->add_option("--init-from", o->init_from,
                   "values from the \"learned\" map of an earlier run's --json result: the initial values of the learned parameters (replacing --perturb's), the fixed values of the others");
-  app->add_option("--optimizer", o->optimizer, "sgd, adam or lbfgs (L-BFGS with a line search; full batch only)")->capture_default_str();
+  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia; lengths in units of their class radius; radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");

@@ -216,9 +216,11 @@ TrainCheckpoint decode_checkpoint(const std::string& bytes, const std::string& p
   c.objective_state = in.get_string();
   in.expect_end();
   if (!c.theta.allFinite()) in.fail("a parameter value is not finite");
-  // sgd/adam: one moment entry per parameter; lbfgs: the stored pairs, a multiple of it.
-  if (c.optimizer.m.size() != c.optimizer.s.size() ||
-      (c.optimizer.m.size() != 0 && (c.theta.size() == 0 || c.optimizer.m.size() % c.theta.size() != 0)))
+  // sgd/adam: one moment entry per parameter; lbfgs: the stored pairs, a multiple of it;
+  // lm: the damping (λ, ν), 2 entries (Optimizer::restore checks them against the kind).
+  const Index moments = c.optimizer.m.size();
+  if (moments != c.optimizer.s.size() ||
+      (moments != 0 && moments != 2 && (c.theta.size() == 0 || moments % c.theta.size() != 0)))
     in.fail("optimizer moments of " + std::to_string(c.optimizer.m.size()) + " and " +
             std::to_string(c.optimizer.s.size()) + " entries for " + std::to_string(c.theta.size()) + " parameters");
   return c;

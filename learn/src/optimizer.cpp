@@ -12,6 +12,7 @@ const char* to_string(OptimizerKind k) {
     case OptimizerKind::sgd: return "sgd";
     case OptimizerKind::adam: return "adam";
     case OptimizerKind::lbfgs: return "lbfgs";
+    case OptimizerKind::lm: return "lm";
   }
   return "unknown";
 }
@@ -20,7 +21,8 @@ OptimizerKind parse_optimizer_kind(const std::string& s) {
   if (s == "sgd") return OptimizerKind::sgd;
   if (s == "adam") return OptimizerKind::adam;
   if (s == "lbfgs") return OptimizerKind::lbfgs;
-  throw InputError("unknown optimizer '" + s + "' (sgd, adam or lbfgs)");
+  if (s == "lm") return OptimizerKind::lm;
+  throw InputError("unknown optimizer '" + s + "' (sgd, adam, lbfgs or lm)");
 }
 
 std::string OptimizerSettings::validation_error() const {
@@ -53,6 +55,9 @@ void Optimizer::restore(const OptimizerState& state) {
     throw InputError("optimizer state: lbfgs pairs without a step");
   if (state.steps < 0) throw InputError("optimizer state: negative step count");
   if (!state.m.allFinite() || !state.s.allFinite()) throw InputError("optimizer state: a moment is not finite");
+  if (settings_.kind == OptimizerKind::lm && state.m.size() != 0 &&
+      (state.m.size() != 2 || !(state.m(0) > 0.0) || !(state.m(1) >= 2.0)))
+    throw InputError("optimizer state: lm damping must be (λ > 0, ν ≥ 2)");
   m_ = state.m;
   s_ = state.s;
   steps_ = state.steps;
@@ -68,6 +73,8 @@ void Optimizer::step(Vector& xi, const Vector& gradient) {
   if (!gradient.allFinite()) throw std::runtime_error("optimizer: the gradient is not finite");
   if (settings_.kind == OptimizerKind::lbfgs)
     throw std::logic_error("optimizer: lbfgs steps need a line search (train() runs it)");
+  if (settings_.kind == OptimizerKind::lm)
+    throw std::logic_error("optimizer: lm steps need residuals and trial evaluations (train() runs them)");
   if (m_.size() != xi.size()) {
     m_ = Vector::Zero(xi.size());
     s_ = Vector::Zero(xi.size());
@@ -87,6 +94,22 @@ void Optimizer::step(Vector& xi, const Vector& gradient) {
   const double k = static_cast<double>(steps_);
   const double c1 = 1.0 - std::pow(settings_.beta1, k), c2 = 1.0 - std::pow(settings_.beta2, k);
   xi -= alpha * ((m_ / c1).array() / ((s_ / c2).array().sqrt() + settings_.epsilon)).matrix();
+}
+
+bool Optimizer::lm_damping(double& lambda, double& nu) const {
+  if (m_.size() != 2) return false;
+  lambda = m_(0);
+  nu = m_(1);
+  return true;
+}
+
+void Optimizer::lm_set_damping(double lambda, double nu, bool accepted) {
+  if (!(lambda > 0.0) || !std::isfinite(lambda) || !(nu >= 2.0) || !std::isfinite(nu))
+    throw std::logic_error("optimizer: lm damping must be (λ > 0, ν ≥ 2) and finite");
+  m_ = Vector(2);
+  m_ << lambda, nu;
+  s_ = Vector::Zero(2);
+  if (accepted) ++steps_;
 }
 
 int Optimizer::lbfgs_pairs() const {

@@ -85,37 +85,66 @@ void SceneObjective::prepare(const ParameterSet& theta, int threads) {
   }
 }
 
-SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, int thread) {
-  Workspace& ws = *workspaces_.at(static_cast<std::size_t>(thread));
+namespace {
+
+// v* of a body in free flight: v + Δt (g + u_xy/m, u_τ/I).
+Vec3 free_flight_velocity(const World& world, const RigidBody& body, const Vec3& u, double dt) {
+  return body.velocity + dt * Vec3(world.gravity.x() + u.x() / body.mass, world.gravity.y() + u.y() / body.mass,
+                                   u.z() / body.inertia);
+}
+
+std::string island_failure(Index sample, const SceneTransition& t, std::size_t k, const ContactSystem& s,
+                           ContactStatus status, const std::string& message) {
+  return "transition " + std::to_string(sample) + " (step " + std::to_string(t.step) + "), island " +
+         std::to_string(k) + " (" + std::to_string(s.num_contacts()) + " contacts): " + to_string(status) +
+         (message.empty() ? "" : ": " + message);
+}
+
+}  // namespace
+
+StepContacts SceneObjective::begin_transition(Workspace& ws, Index sample, const ParameterSet& theta) {
   if (ws.theta.size() != theta.size() || ws.theta != theta.values())
-    throw std::logic_error("SceneObjective::evaluate: prepare() was not called with this θ");
+    throw std::logic_error("SceneObjective: prepare() was not called with this θ");
   const SceneTransition& t = data_.transitions.at(static_cast<std::size_t>(sample));
   World& world = ws.world;
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     world.bodies[b].pose = t.pose[b];
     world.bodies[b].velocity = t.velocity[b];
   }
-  const SimulatorSettings& sim = data_.scene.settings;
-  const double dt = sim.dt;
-  SampleResult out;
   auto t0 = std::chrono::steady_clock::now();
-  const StepContacts found = find_step_contacts(world, sim, t.applied);
+  StepContacts found = find_step_contacts(world, data_.scene.settings, t.applied);
   ws.stats.seconds_collision += seconds_since(t0);
   ws.gradient.set_zero(world, found.contacts.size());
   ++ws.stats.transitions;
   ws.stats.contacts += static_cast<long>(found.contacts.size());
+  return found;
+}
+
+ContactSystem SceneObjective::island_system(Workspace& ws, const StepContacts& found, std::size_t k,
+                                            const SceneTransition& t, std::vector<bool>& in_island) const {
+  ContactSystem s = assemble_contact_system(ws.world, found.contacts, found.islands[k], data_.scene.settings.dt, t.applied);
+  ws.target.resize(s.num_dofs());
+  for (std::size_t j = 0; j < s.bodies.size(); ++j) {
+    const std::size_t b = static_cast<std::size_t>(s.bodies[j]);
+    ws.target.segment<3>(3 * static_cast<Index>(j)) = t.next_velocity[b];
+    in_island[b] = true;
+  }
+  return s;
+}
+
+SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, int thread) {
+  Workspace& ws = *workspaces_.at(static_cast<std::size_t>(thread));
+  const StepContacts found = begin_transition(ws, sample, theta);
+  const SceneTransition& t = data_.transitions[static_cast<std::size_t>(sample)];
+  World& world = ws.world;
+  const double dt = data_.scene.settings.dt;
+  SampleResult out;
 
   if (settings_.method == LossMethod::relaxed) centers_[static_cast<std::size_t>(sample)].begin();
   std::vector<bool> in_island(world.bodies.size(), false);
   for (std::size_t k = 0; k < found.islands.size(); ++k) {
-    t0 = std::chrono::steady_clock::now();
-    const ContactSystem s = assemble_contact_system(world, found.contacts, found.islands[k], dt, t.applied);
-    ws.target.resize(s.num_dofs());
-    for (std::size_t j = 0; j < s.bodies.size(); ++j) {
-      const std::size_t b = static_cast<std::size_t>(s.bodies[j]);
-      ws.target.segment<3>(3 * static_cast<Index>(j)) = t.next_velocity[b];
-      in_island[b] = true;
-    }
+    auto t0 = std::chrono::steady_clock::now();
+    const ContactSystem s = island_system(ws, found, k, t, in_island);
     StepLossResult r;
     switch (settings_.method) {
       case LossMethod::hard: r = hard_step_loss(s, ws.target, dt, settings_.hard); break;
@@ -141,9 +170,7 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     if (!has_solution(r.status)) {
       ++ws.stats.failed_islands;
       out.ok = false;
-      out.message = "transition " + std::to_string(sample) + " (step " + std::to_string(t.step) + "), island " +
-                    std::to_string(k) + " (" + std::to_string(s.num_contacts()) + " contacts): " + to_string(r.status) +
-                    (r.message.empty() ? "" : ": " + r.message);
+      out.message = island_failure(sample, t, k, s, r.status, r.message);
       return out;
     }
     if (r.status == ContactStatus::solved_inaccurate) ++ws.stats.inaccurate_islands;
@@ -153,14 +180,12 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     ws.stats.seconds_pullback += seconds_since(t0);
   }
 
-  // Free flight: v⁺ = v* = v + Δt (g + u_xy/m, u_τ/I).
+  // Free flight: v⁺ = v*, whose gradient reaches mass and inertia through u.
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     const RigidBody& body = world.bodies[b];
     if (body.is_static || in_island[b]) continue;
     const Vec3 u = t.applied.empty() ? Vec3::Zero() : t.applied[b];
-    const Vec3 v_star = body.velocity + dt * Vec3(world.gravity.x() + u.x() / body.mass,
-                                                  world.gravity.y() + u.y() / body.mass, u.z() / body.inertia);
-    const Vec3 e = v_star - t.next_velocity[b];
+    const Vec3 e = free_flight_velocity(world, body, u, dt) - t.next_velocity[b];
     out.loss += e.squaredNorm();
     ws.gradient.bodies[b].mass += -2.0 * dt * (e.x() * u.x() + e.y() * u.y()) / (body.mass * body.mass);
     ws.gradient.bodies[b].inertia += -2.0 * dt * e.z() * u.z() / (body.inertia * body.inertia);
@@ -168,6 +193,72 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
   if (settings_.method == LossMethod::relaxed && settings_.relaxed_warm_center)
     centers_[static_cast<std::size_t>(sample)].commit();
   out.gradient = map_.gradient(world, found.contacts, ws.gradient);
+  return out;
+}
+
+std::string SceneObjective::residuals_unavailable() const {
+  if (settings_.method == LossMethod::convex) return {};
+  return std::string("the ") + to_string(settings_.method) +
+         " loss gives no residual Jacobian (the convex loss does: --method convex)";
+}
+
+ResidualResult SceneObjective::evaluate_residuals(Index sample, const ParameterSet& theta, int thread) {
+  const std::string why = residuals_unavailable();
+  if (!why.empty()) throw std::logic_error("SceneObjective::evaluate_residuals: " + why);
+  Workspace& ws = *workspaces_.at(static_cast<std::size_t>(thread));
+  const StepContacts found = begin_transition(ws, sample, theta);
+  const SceneTransition& t = data_.transitions[static_cast<std::size_t>(sample)];
+  World& world = ws.world;
+  const double dt = data_.scene.settings.dt;
+  const Index rows = 3 * static_cast<Index>(world.bodies.size());
+  ResidualResult out;
+  out.residual = Vector::Zero(rows);
+  out.jacobian = DenseMatrix::Zero(rows, theta.size());
+
+  std::vector<bool> in_island(world.bodies.size(), false);
+  for (std::size_t k = 0; k < found.islands.size(); ++k) {
+    auto t0 = std::chrono::steady_clock::now();
+    const ContactSystem s = island_system(ws, found, k, t, in_island);
+    const StepJacobianResult r = convex_step_jacobian(s, ws.target, dt, settings_.convex);
+    ws.stats.seconds_loss += seconds_since(t0);
+    ++ws.stats.islands;
+    if (!has_solution(r.status)) {
+      ++ws.stats.failed_islands;
+      out.ok = false;
+      out.message = island_failure(sample, t, k, s, r.status, r.message);
+      return out;
+    }
+    if (r.status == ContactStatus::solved_inaccurate) ++ws.stats.inaccurate_islands;
+    t0 = std::chrono::steady_clock::now();
+    for (std::size_t j = 0; j < s.bodies.size(); ++j) {
+      const Index row0 = 3 * static_cast<Index>(s.bodies[j]);
+      for (Index c = 0; c < 3; ++c) {
+        const Index local = 3 * static_cast<Index>(j) + c;
+        out.residual(row0 + c) = r.v_next(local) - ws.target(local);
+        ws.gradient.set_zero(world, found.contacts.size());
+        accumulate_world_gradient(world, found.contacts, s, dt, t.applied, r.rows[static_cast<std::size_t>(local)],
+                                  ws.gradient);
+        out.jacobian.row(row0 + c) = map_.gradient(world, found.contacts, ws.gradient).transpose();
+      }
+    }
+    ws.stats.seconds_pullback += seconds_since(t0);
+  }
+
+  // Free flight: r = v* − v̄, ∂v*_xy/∂m = −Δt u_xy/m², ∂v*_ω/∂I = −Δt u_τ/I².
+  for (std::size_t b = 0; b < world.bodies.size(); ++b) {
+    const RigidBody& body = world.bodies[b];
+    if (body.is_static || in_island[b]) continue;
+    const Vec3 u = t.applied.empty() ? Vec3::Zero() : t.applied[b];
+    const Index row0 = 3 * static_cast<Index>(b);
+    out.residual.segment<3>(row0) = free_flight_velocity(world, body, u, dt) - t.next_velocity[b];
+    const double dm[3] = {-dt * u.x() / (body.mass * body.mass), -dt * u.y() / (body.mass * body.mass), 0.0};
+    for (Index c = 0; c < 3; ++c) {
+      ws.gradient.set_zero(world, found.contacts.size());
+      ws.gradient.bodies[b].mass = dm[c];
+      ws.gradient.bodies[b].inertia = c == 2 ? -dt * u.z() / (body.inertia * body.inertia) : 0.0;
+      out.jacobian.row(row0 + c) = map_.gradient(world, found.contacts, ws.gradient).transpose();
+    }
+  }
   return out;
 }
 

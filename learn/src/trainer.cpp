@@ -1,6 +1,7 @@
 // Mini-batch training loop with checkpoints (trainer.hpp, checkpoint.hpp).
 #include <lcprelax/learn/trainer.hpp>
 #include "lbfgs_line_search.hpp"
+#include "levenberg_marquardt.hpp"
 #include <lcprelax/learn/checkpoint.hpp>
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
@@ -13,6 +14,7 @@
 #include <limits>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 namespace lcprelax::learn {
 
@@ -40,6 +42,10 @@ std::string TrainSettings::validation_error() const {
   if (!(std::isfinite(grad_tol) && grad_tol >= 0.0)) return "grad_tol must be finite and ≥ 0";
   if (patience < 0) return "patience must be ≥ 0";
   return optimizer.validation_error();
+}
+
+ResidualResult Objective::evaluate_residuals(Index /*sample*/, const ParameterSet& /*theta*/, int /*thread*/) {
+  throw std::logic_error("Objective::evaluate_residuals: not a least-squares objective (" + residuals_unavailable() + ")");
 }
 
 BatchResult evaluate_mean(Objective& objective, const ParameterSet& theta, const std::vector<Index>& samples,
@@ -185,10 +191,19 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   if (lbfgs && !full_batch)
     throw InputError("optimizer lbfgs needs the whole training set per step (batch 0 or at least " +
                      std::to_string(order.size()) + ", not " + std::to_string(settings.batch) + ")");
-  bool line_search_failed = false;
+  const bool lm = settings.optimizer.kind == OptimizerKind::lm;
+  if (lm && !full_batch)
+    throw InputError("optimizer lm needs the whole training set per step (batch 0 or at least " +
+                     std::to_string(order.size()) + ", not " + std::to_string(settings.batch) + ")");
+  if (lm) {
+    const std::string why = objective.residuals_unavailable();
+    if (!why.empty()) throw InputError("optimizer lm needs a least-squares loss: " + why);
+  }
+  bool line_search_failed = false, lm_failed = false;
   const bool test_on = settings.patience > 0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (int epoch = first_epoch; epoch <= settings.epochs && !out.converged && !line_search_failed; ++epoch) {
+  for (int epoch = first_epoch; epoch <= settings.epochs && !out.converged && !line_search_failed && !lm_failed;
+       ++epoch) {
     if (settings.shuffle) shuffle(order, loop.rng);
     EpochRecord rec;
     rec.epoch = epoch;
@@ -214,6 +229,15 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
         trial_failures += it.failed;
         if (it.failed > 0 && out.first_failure.empty()) out.first_failure = it.first_failure;
         line_search_failed = !it.accepted && it.steepest;
+        continue;
+      }
+      if (lm) {  // one damped Gauss–Newton iteration (levenberg_marquardt.hpp)
+        const detail::LmIteration it =
+            detail::lm_iteration(objective, theta, samples, settings.threads, settings.distributed, optimizer);
+        loop.evaluated_total += it.evaluated;
+        trial_failures += it.failed;
+        if (it.failed > 0 && out.first_failure.empty()) out.first_failure = it.first_failure;
+        lm_failed = !it.accepted;
         continue;
       }
       Vector xi = theta.free();
@@ -268,6 +292,10 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   else if (line_search_failed)
     std::snprintf(reason, sizeof reason,
                   "lbfgs line search found no decrease along -gradient after %d epochs (a kink or the loss's noise floor)",
+                  static_cast<int>(out.history.size()));
+  else if (lm_failed)
+    std::snprintf(reason, sizeof reason,
+                  "lm found no decrease at any damping after %d epochs (a kink or the loss's noise floor)",
                   static_cast<int>(out.history.size()));
   else
     std::snprintf(reason, sizeof reason, "epoch cap reached (%d epochs%s)", settings.epochs,

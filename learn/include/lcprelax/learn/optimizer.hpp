@@ -12,6 +12,12 @@
 //         needs loss values, so lbfgs does not use step(): the trainer runs a backtracking
 //         Armijo line search over the whole training set (trainer.hpp, lbfgs_line_search.hpp).
 //         Deterministic, hence for full batches only.
+//   lm   (Levenberg–Marquardt: Levenberg 1944, Marquardt 1963; damping update of Nielsen
+//         1999, as in Madsen, Nielsen & Tingleff, "Methods for non-linear least squares
+//         problems", 2004, §3.2): for least-squares losses only; the step solves
+//         (A + λ D)δ = −b on the Gauss–Newton model of least_squares.hpp. Its trial
+//         evaluations are run by the trainer (learn/src/levenberg_marquardt.hpp); the
+//         optimizer keeps the damping λ and its growth factor ν (state: m = (λ, ν)).
 // Learning-rate schedule α_k = α / (1 + decay·k), k = steps taken so far (lbfgs: the
 // first trial step of a line search without stored pairs moves the largest free
 // coordinate by α_k).
@@ -27,9 +33,9 @@
 
 namespace lcprelax::learn {
 
-enum class OptimizerKind { sgd, adam, lbfgs };
+enum class OptimizerKind { sgd, adam, lbfgs, lm };
 const char* to_string(OptimizerKind k);
-/// "sgd", "adam" or "lbfgs"; throws InputError otherwise.
+/// "sgd", "adam", "lbfgs" or "lm"; throws InputError otherwise.
 OptimizerKind parse_optimizer_kind(const std::string& s);
 
 struct OptimizerSettings {
@@ -70,6 +76,10 @@ class Optimizer {
   void lbfgs_forget();
   /// lbfgs: pairs stored.
   int lbfgs_pairs() const;
+  /// lm: the stored damping λ and growth factor ν; false before the first iteration.
+  bool lm_damping(double& lambda, double& nu) const;
+  /// lm: stores λ > 0 and ν ≥ 2; an accepted step is counted.
+  void lm_set_damping(double lambda, double nu, bool accepted);
   void reset();
   OptimizerState state() const { return {m_, s_, steps_}; }
   /// Continues from `state` (of an optimizer with the same settings); throws InputError if

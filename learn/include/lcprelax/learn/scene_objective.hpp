@@ -37,6 +37,7 @@
 #include <lcprelax/learn/step_loss_hard.hpp>
 #include <lcprelax/learn/step_loss_relaxed.hpp>
 #include <lcprelax/learn/trainer.hpp>
+#include <lcprelax/models/simulator.hpp>
 
 #include <memory>
 #include <string>
@@ -81,6 +82,13 @@ class SceneObjective : public Objective {
   SampleResult evaluate(Index sample, const ParameterSet& theta, int thread) override;
   void save_state(StateWriter& out) const override;
   void load_state(StateReader& in) override;
+  /// Empty for the convex method; the hard and relaxed methods give no residual Jacobian.
+  std::string residuals_unavailable() const override;
+  /// Convex method: rᵢ = v⁺ − v̄ for every body's 3 dofs (3 rows per world body, in body
+  /// order; static bodies' rows are 0; free-flying bodies' v⁺ = v*), so ‖rᵢ‖² = ℓᵢ of
+  /// evaluate(), and ∂rᵢ/∂θ row by row (convex_step_jacobian, pulled back like the
+  /// gradient). For Gauss–Newton training (OptimizerKind::lm, least_squares.hpp).
+  ResidualResult evaluate_residuals(Index sample, const ParameterSet& theta, int thread) override;
 
   SceneObjectiveStats stats() const;
   void reset_stats();
@@ -90,6 +98,11 @@ class SceneObjective : public Objective {
 
  private:
   struct Workspace;
+  /// Sets the transition's state in the thread's world, finds its contacts and islands.
+  StepContacts begin_transition(Workspace& ws, Index sample, const ParameterSet& theta);
+  /// Island k's ContactSystem; sets ws.target to its bodies' next velocities and marks them.
+  ContactSystem island_system(Workspace& ws, const StepContacts& found, std::size_t k, const SceneTransition& t,
+                              std::vector<bool>& in_island) const;
   const SceneDataset& data_;
   const SceneParameterMap& map_;
   SceneLossSettings settings_;

@@ -16,6 +16,7 @@
 #include <lcprelax/sparse/types.hpp>
 
 #include <string>
+#include <vector>
 
 namespace lcprelax::learn {
 
@@ -34,6 +35,18 @@ struct StepLossResult {
   Vector v_next;                 ///< the method's prediction v⁺ (3 per island body)
   ContactSystemCotangent grad;   ///< ∂ℓ/∂data
   long work = 0;                 ///< pivots or interior-point iterations
+};
+
+/// The prediction of a step loss of least-squares form, ℓ = ‖v⁺ − v̄‖² (hard, convex), with
+/// its Jacobian ∂v⁺/∂data one row per dof, for Gauss–Newton training (least_squares.hpp):
+/// rows[k] = ∂v⁺_k/∂(Jn, Jt, φ, μ, M⁻¹, v*), each row the cotangent that the loss's gradient
+/// would be for ℓ = v⁺_k. So ∂ℓ/∂data = Σ_k 2(v⁺_k − v̄_k)·rows[k].
+struct StepJacobianResult {
+  ContactStatus status = ContactStatus::unsolved;
+  std::string message;                        ///< why, when status is not solved
+  Vector v_next;                              ///< v⁺ (3 per island body)
+  std::vector<ContactSystemCotangent> rows;   ///< one per dof of v⁺
+  long work = 0;                              ///< pivots or interior-point iterations
 };
 
 }  // namespace lcprelax::learn

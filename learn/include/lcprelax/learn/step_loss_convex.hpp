@@ -105,4 +105,12 @@ struct ConvexStepLossTimes {
 StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, double dt,
                                 const ConvexStepLossSettings& settings, ConvexStepLossTimes* times = nullptr);
 
+/// The same solve with ∂v⁺/∂(island data) row by row (step_loss.hpp, StepJacobianResult):
+/// one backward pass per dof through both phases' final factorizations (the loss's gradient
+/// is the row combination with weights 2(v⁺ − v̄)). For Gauss–Newton training, where the
+/// prediction's Jacobian, not only the loss's gradient, is needed. Same errors and statuses
+/// as convex_step_loss (solved_inaccurate where any row's adjoint residual exceeds 1e-6).
+StepJacobianResult convex_step_jacobian(const ContactSystem& s, const Vector& target, double dt,
+                                        const ConvexStepLossSettings& settings);
+
 }  // namespace lcprelax::learn

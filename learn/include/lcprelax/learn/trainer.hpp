@@ -16,6 +16,11 @@
 // - A sample that fails to evaluate is skipped and counted (EpochRecord::failed); a batch
 //   in which every sample fails leaves the parameters unchanged.
 //
+// Levenberg–Marquardt (OptimizerKind::lm, full batch only, objectives with
+// evaluate_residuals() only, else InputError): an epoch is one damped Gauss–Newton
+// iteration (learn/src/levenberg_marquardt.hpp); a run whose iteration finds no decrease at
+// any damping ends with "lm found no decrease ...".
+//
 // L-BFGS (OptimizerKind::lbfgs, full batch only, else InputError): an epoch is one
 // quasi-Newton iteration — the training set's loss and gradient at the epoch's θ, then a
 // backtracking line search whose trial points are further evaluations of the whole set
@@ -58,6 +63,7 @@
 // TrainSettings::resume, train() continues from such a file and ends with θ bitwise equal
 // to that of a run that was never interrupted (with any thread count).
 #include <lcprelax/learn/batch.hpp>
+#include <lcprelax/learn/least_squares.hpp>
 #include <lcprelax/learn/optimizer.hpp>
 #include <lcprelax/learn/parameters.hpp>
 #include <lcprelax/learn/state_stream.hpp>
@@ -87,6 +93,12 @@ class Objective {
   /// does not fit this objective). An objective without such state keeps the defaults.
   virtual void save_state(StateWriter& /*out*/) const {}
   virtual void load_state(StateReader& /*in*/) {}
+  /// Least-squares objectives (least_squares.hpp): empty when evaluate_residuals() is
+  /// available, else why not (the message train() gives for OptimizerKind::lm).
+  virtual std::string residuals_unavailable() const { return "this loss is not a sum of squares"; }
+  /// rᵢ and ∂rᵢ/∂θ with ℓᵢ = ‖rᵢ‖² (same θ, thread and prepare() rules as evaluate()).
+  /// The default throws std::logic_error.
+  virtual ResidualResult evaluate_residuals(Index sample, const ParameterSet& theta, int thread);
 };
 
 struct TrainSettings {

@@ -1,0 +1,124 @@
+// One Levenberg–Marquardt iteration (levenberg_marquardt.hpp).
+#include "levenberg_marquardt.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lcprelax::learn::detail {
+namespace {
+
+constexpr double kMaxFreeStep = 1.0;
+constexpr int kMaxTrials = 30;
+constexpr double kAcceptRatio = 1e-4;
+constexpr double kMinRelativeDecrease = 1e-14;
+constexpr double kInitialDamping = 1e-3;
+constexpr double kScaleFloor = 1e-12;
+
+// The mean Gauss–Newton model over the samples: A, b and the mean loss C.
+struct NormalEquations {
+  DenseMatrix A;
+  Vector b;
+  double loss = 0.0;
+  BatchResult batch;
+};
+
+NormalEquations normal_equations(Objective& objective, const ParameterSet& theta, const std::vector<Index>& samples,
+                                 int threads, bool distributed) {
+  const Index n = theta.size();
+  const Vector chain = theta.chain_gradient(Vector::Ones(n));  // dθ/dξ, 0 where held fixed
+  objective.prepare(theta, resolve_threads(threads));
+  // Each sample packs J̃ᵀr (n entries) then J̃ᵀJ̃ (n² entries, column-major) into the slot
+  // that evaluate_batch reduces in sample order.
+  const SampleFunction f = [&](Index i, int t) {
+    SampleResult out;
+    const ResidualResult rr = objective.evaluate_residuals(i, theta, t);
+    if (!rr.ok) {
+      out.ok = false;
+      out.message = rr.message;
+      return out;
+    }
+    const DenseMatrix J = rr.jacobian * chain.asDiagonal();
+    out.loss = rr.residual.squaredNorm();
+    out.gradient.resize(n + n * n);
+    out.gradient.head(n) = J.transpose() * rr.residual;
+    Eigen::Map<DenseMatrix>(out.gradient.data() + n, n, n) = J.transpose() * J;
+    return out;
+  };
+  NormalEquations ne;
+  ne.batch = distributed ? evaluate_batch_distributed(samples, n + n * n, threads, f)
+                         : evaluate_batch(samples, n + n * n, threads, f);
+  if (ne.batch.evaluated == 0) return ne;
+  const double inv = 1.0 / ne.batch.evaluated;
+  ne.loss = ne.batch.loss * inv;
+  ne.b = ne.batch.gradient.head(n) * inv;
+  ne.A = Eigen::Map<const DenseMatrix>(ne.batch.gradient.data() + n, n, n) * inv;
+  return ne;
+}
+
+}  // namespace
+
+LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::vector<Index>& samples, int threads,
+                         bool distributed, Optimizer& optimizer) {
+  LmIteration it;
+  const NormalEquations ne = normal_equations(objective, theta, samples, threads, distributed);
+  it.evaluated += ne.batch.evaluated;
+  it.failed += ne.batch.failed;
+  it.first_failure = ne.batch.first_failure;
+  if (ne.batch.evaluated == 0 || !std::isfinite(ne.loss) || !ne.A.allFinite() || !ne.b.allFinite()) return it;
+
+  const Index n = theta.size();
+  const Vector chain = theta.chain_gradient(Vector::Ones(n));
+  const double max_diag = n > 0 ? ne.A.diagonal().maxCoeff() : 0.0;
+  if (!(max_diag > 0.0)) return it;  // no parameter moves any residual
+  Vector D(n);
+  for (Index j = 0; j < n; ++j) D(j) = chain(j) == 0.0 ? 1.0 : std::max(ne.A(j, j), kScaleFloor * max_diag);
+
+  double lambda = kInitialDamping * max_diag, nu = 2.0;
+  optimizer.lm_damping(lambda, nu);
+  const Vector xi0 = theta.free();
+  for (int trial = 0; trial < kMaxTrials; ++trial) {
+    DenseMatrix K = ne.A;
+    K.diagonal() += lambda * D;
+    const Eigen::LLT<DenseMatrix> llt(K);
+    Vector delta = llt.info() == Eigen::Success ? Vector(llt.solve(-ne.b)) : Vector(Vector::Zero(n));
+    const double longest = delta.lpNorm<Eigen::Infinity>();
+    if (longest > kMaxFreeStep) delta *= kMaxFreeStep / longest;
+    const double predicted = -(2.0 * delta.dot(ne.b) + delta.dot(ne.A * delta));
+    bool accept = false;
+    double rho = 0.0;
+    if (llt.info() == Eigen::Success && delta.allFinite() && predicted > 0.0) {
+      theta.set_free(xi0 + delta);
+      const BatchResult r = evaluate_mean(objective, theta, samples, threads, distributed);
+      ++it.trials;
+      it.evaluated += r.evaluated;
+      it.failed += r.failed;
+      if (r.failed > 0 && it.first_failure.empty()) it.first_failure = r.first_failure;
+      if (r.evaluated == ne.batch.evaluated && std::isfinite(r.loss)) {
+        const double decrease = ne.loss - r.loss;
+        rho = decrease / predicted;
+        accept = rho > kAcceptRatio && decrease > kMinRelativeDecrease * std::abs(ne.loss);
+      }
+    }
+    if (accept) {
+      lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+      nu = 2.0;
+      lambda = std::max(lambda, 1e-300);
+      optimizer.lm_set_damping(lambda, nu, true);
+      it.accepted = true;
+      it.lambda = lambda;
+      return it;
+    }
+    theta.set_free(xi0);
+    lambda *= nu;
+    nu *= 2.0;
+    if (!std::isfinite(lambda) || !std::isfinite(nu)) break;
+  }
+  // No decrease at any damping tried: θ stays; the damping restarts from its initial value.
+  optimizer.lm_set_damping(kInitialDamping * max_diag, 2.0, false);
+  it.lambda = kInitialDamping * max_diag;
+  return it;
+}
+
+}  // namespace lcprelax::learn::detail

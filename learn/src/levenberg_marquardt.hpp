@@ -1,0 +1,41 @@
+#pragma once
+// One Levenberg–Marquardt iteration of train() (trainer.hpp, optimizer.hpp, least_squares.hpp).
+//
+// At ξ₀ the training set's residuals give the Gauss–Newton model C + 2δᵀb + δᵀAδ of the mean
+// loss (least_squares.hpp). A trial step solves
+//   (A + λD) δ = −b,   D = diag(A) floored at 1e-12·max diag(A) (Marquardt's scaling, so
+//                      the step does not depend on the units of ξ), 1 on columns held fixed,
+// by a dense Cholesky factorization (A is |θ| × |θ|, small), and is shortened to
+// ‖δ‖∞ ≤ kMaxFreeStep = 1 (a factor e on a log parameter, one radius on a vertex, as the
+// L-BFGS search). It is accepted when the gain ratio
+//   ϱ = (C(ξ₀) − C(ξ₀ + δ)) / (−2δᵀb − δᵀAδ)
+// exceeds 1e-4 and the decrease is more than 1e-14 relative (the jitter of warm-started
+// solves); then λ ← λ·max(1/3, 1 − (2ϱ − 1)³), ν ← 2; else λ ← λν, ν ← 2ν and the next trial
+// solves again (Nielsen 1999; Madsen, Nielsen & Tingleff 2004, eq. 3.16). λ starts at
+// 1e-3·max diag(A). A trial counts only when as many samples evaluate as at ξ₀ and its loss
+// is finite. At most kMaxTrials = 30 trials; without an accepted one θ stays at ξ₀ and the
+// run ends (a kink where no damped step decreases the loss, or the loss's noise floor).
+// The damping (λ, ν) is kept in the optimizer (checkpointed with it).
+#include <lcprelax/learn/optimizer.hpp>
+#include <lcprelax/learn/parameters.hpp>
+#include <lcprelax/learn/trainer.hpp>
+
+#include <string>
+#include <vector>
+
+namespace lcprelax::learn::detail {
+
+struct LmIteration {
+  bool accepted = false;   ///< θ moved
+  int trials = 0;          ///< trial evaluations of the training set
+  long evaluated = 0;      ///< sample evaluations (residual and trial) over the iteration
+  int failed = 0;          ///< failed sample evaluations over the iteration
+  std::string first_failure;
+  double lambda = 0.0;     ///< the damping after the iteration
+};
+
+/// One iteration from the current θ over `samples` (the whole training set).
+LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::vector<Index>& samples, int threads,
+                         bool distributed, Optimizer& optimizer);
+
+}  // namespace lcprelax::learn::detail
