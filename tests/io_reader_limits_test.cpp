@@ -63,8 +63,9 @@ const std::vector<std::pair<std::string, std::function<void(const std::string&)>
 
 TEST(ReaderLimits, DevZeroFailsFastInEveryReader) {
   if (!fs::exists("/dev/zero")) GTEST_SKIP() << "no /dev/zero";
-  for (const auto& [name, read] : kReaders) {
-    SCOPED_TRACE(name);
+  for (const auto& reader : kReaders) {
+    const auto& read = reader.second;  // a named reference: a lambda may capture it (not a binding)
+    SCOPED_TRACE(reader.first);
     const auto start = std::chrono::steady_clock::now();
     const std::string message = error_of([&] { read("/dev/zero"); });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -76,9 +77,10 @@ TEST(ReaderLimits, DevZeroFailsFastInEveryReader) {
 
 TEST(ReaderLimits, LineLongerThanOneMebibyteIsAnError) {
   const std::string line(text::kMaxLineBytes + 10, 'a');
-  for (const auto& [name, read] : kReaders) {
-    if (name == "scene json") continue;  // not line based: its limit is the file size
-    SCOPED_TRACE(name);
+  for (const auto& reader : kReaders) {
+    const auto& read = reader.second;
+    if (reader.first == "scene json") continue;  // not line based: its limit is the file size
+    SCOPED_TRACE(reader.first);
     const std::string path = write_temp("long_line", line + "\n");
     const std::string message = error_of([&] { read(path); });
     EXPECT_NE(message.find(path + ":1: line longer than 1048576 bytes"), std::string::npos) << message;
