@@ -1,25 +1,39 @@
 #!/usr/bin/env bash
-# Parameter recovery on a 30-body learning pile (lcprelax learn scene), each method on data
-# of its own model (relaxed: the LCP model; convex: the convex model), every learned
-# parameter perturbed by 25%, 800 epochs of Adam (lr 0.01, decay 0.01). Writes
-# bench/results/learn_scene_recovery/<method>_<bodies>_seed<S>.json (the CLI's JSON) and
-# bench/results/learn_scene_recovery.csv (one row per run: the largest relative error per
-# parameter kind; vertices in units of their class radius). Each run takes 5–15 min on 2
-# cores. Run from the repository root after building.
-# Usage: bench/learn_scene_recovery.sh [BUILD_DIR] [SEEDS (default "1")] [BODIES (default 30)]
+# Parameter recovery on a 30-body learning pile (lcprelax learn scene), every learned
+# parameter perturbed by 25%. Runs (RUNS, default all three):
+#   relaxed     the relaxed loss on data of the LCP model, 800 epochs of Adam (lr 0.01,
+#               decay 0.01);
+#   convex      the convex loss on data of the convex model, unbiased (deviation penalty in
+#               phase 2 only, phase-1 regularization 1e-6), Levenberg–Marquardt (--optimizer
+#               lm), at most 200 epochs;
+#   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
+#               convex model's class: what it recovers there).
+# Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and
+# bench/results/learn_scene_recovery.csv (one row per JSON in that folder: the largest
+# relative error per parameter kind; vertices in units of their class radius). Each run
+# takes 2–15 min on 2 cores. Run from the repository root after building.
+# Usage: bench/learn_scene_recovery.sh [BUILD_DIR] [SEEDS (default "1")] [BODIES (default 30)] [RUNS]
 set -euo pipefail
 BUILD=${1:-build}
 SEEDS=${2:-1}
 BODIES=${3:-30}
+RUNS=${4:-relaxed convex convex_lcp}
 R=bench/results
 OUT=$R/learn_scene_recovery
 mkdir -p "$OUT"
+LM="--optimizer lm --epochs 200 --phase1-deviation 0 --phase1-regularization 1e-6"
 for seed in $SEEDS; do
-  for m in relaxed convex; do
-    f="$OUT/${m}_${BODIES}_seed${seed}.json"
-    echo "== learn scene --method $m --bodies $BODIES --seed $seed" >&2
-    "$BUILD/apps/lcprelax" learn scene --method "$m" --bodies "$BODIES" --seed "$seed" --epochs 800 \
-      --lr 0.01 --lr-decay 0.01 --json > "$f"
+  for run in $RUNS; do
+    case $run in
+      relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
+      convex) args="--method convex $LM" ;;
+      convex_lcp) args="--method convex --data-model lcp $LM" ;;
+      *) echo "unknown run '$run' (relaxed, convex, convex_lcp)" >&2; exit 2 ;;
+    esac
+    f="$OUT/${run}_${BODIES}_seed${seed}.json"
+    echo "== learn scene $args --bodies $BODIES --seed $seed" >&2
+    # shellcheck disable=SC2086
+    "$BUILD/apps/lcprelax" learn scene $args --bodies "$BODIES" --seed "$seed" --json > "$f"
   done
 done
 python3 - "$OUT" > "$R/learn_scene_recovery.csv" <<'PY'

@@ -10,7 +10,8 @@
 // - a wrong Jacobian (sign flipped: every model step goes uphill) finds no decrease: θ stays
 //   and the run ends with its own stop reason instead of creeping on;
 // - a parameter held fixed does not move;
-// - mini-batches, objectives without residuals and Optimizer::step are refused.
+// - mini-batches, objectives without residuals, more than 400 parameters and
+//   Optimizer::step are refused.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/trainer.hpp>
 
@@ -186,6 +187,10 @@ TEST(TrainLm, RefusesMiniBatchesPlainLossesAndOptimizerStep) {
     EXPECT_NE(std::string(e.what()).find("least-squares"), std::string::npos) << e.what();
   }
   EXPECT_THROW(plain.evaluate_residuals(0, x, 0), std::logic_error);
+  std::vector<Parameter> many;
+  for (int i = 0; i < 401; ++i) many.push_back(Parameter{"p" + std::to_string(i), 1.0});
+  ParameterSet big(many);
+  EXPECT_THROW(train(f, big, all(9), {}, lm_settings(1)), InputError);  // > 400 parameters
   OptimizerSettings os;
   os.kind = OptimizerKind::lm;
   Optimizer opt(os);

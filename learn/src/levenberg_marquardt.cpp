@@ -69,11 +69,10 @@ LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::v
   if (ne.batch.evaluated == 0 || !std::isfinite(ne.loss) || !ne.A.allFinite() || !ne.b.allFinite()) return it;
 
   const Index n = theta.size();
-  const Vector chain = theta.chain_gradient(Vector::Ones(n));
   const double max_diag = n > 0 ? ne.A.diagonal().maxCoeff() : 0.0;
   if (!(max_diag > 0.0)) return it;  // no parameter moves any residual
-  Vector D(n);
-  for (Index j = 0; j < n; ++j) D(j) = chain(j) == 0.0 ? 1.0 : std::max(ne.A(j, j), kScaleFloor * max_diag);
+  // Marquardt's scaling; 1 on columns held fixed (A and b are 0 there, so δ is 0 too).
+  const Vector D = ne.A.diagonal().cwiseMax(kScaleFloor * max_diag);
 
   double lambda = kInitialDamping * max_diag, nu = 2.0;
   optimizer.lm_damping(lambda, nu);

@@ -195,6 +195,10 @@ TrainResult train(Objective& objective, ParameterSet& theta, const std::vector<I
   if (lm && !full_batch)
     throw InputError("optimizer lm needs the whole training set per step (batch 0 or at least " +
                      std::to_string(order.size()) + ", not " + std::to_string(settings.batch) + ")");
+  if (lm && theta.size() > detail::kMaxLmParameters)
+    throw InputError("optimizer lm forms a |θ|×|θ| Gauss–Newton matrix per sample: at most " +
+                     std::to_string(detail::kMaxLmParameters) + " parameters, this run has " +
+                     std::to_string(theta.size()) + " (use adam or lbfgs)");
   if (lm) {
     const std::string why = objective.residuals_unavailable();
     if (!why.empty()) throw InputError("optimizer lm needs a least-squares loss: " + why);

@@ -15,7 +15,7 @@
 //   lm   (Levenberg–Marquardt: Levenberg 1944, Marquardt 1963; damping update of Nielsen
 //         1999, as in Madsen, Nielsen & Tingleff, "Methods for non-linear least squares
 //         problems", 2004, §3.2): for least-squares losses only; the step solves
-//         (A + λ D)δ = −b on the Gauss–Newton model of least_squares.hpp. Its trial
+//         (A + λ diag(A))δ = −b on the Gauss–Newton model of least_squares.hpp. Its trial
 //         evaluations are run by the trainer (learn/src/levenberg_marquardt.hpp); the
 //         optimizer keeps the damping λ and its growth factor ν (state: m = (λ, ν)).
 // Learning-rate schedule α_k = α / (1 + decay·k), k = steps taken so far (lbfgs: the

@@ -16,7 +16,7 @@
 // - A sample that fails to evaluate is skipped and counted (EpochRecord::failed); a batch
 //   in which every sample fails leaves the parameters unchanged.
 //
-// Levenberg–Marquardt (OptimizerKind::lm, full batch only, objectives with
+// Levenberg–Marquardt (OptimizerKind::lm, full batch only, at most 400 parameters, objectives with
 // evaluate_residuals() only, else InputError): an epoch is one damped Gauss–Newton
 // iteration (learn/src/levenberg_marquardt.hpp); a run whose iteration finds no decrease at
 // any damping ends with "lm found no decrease ...".
