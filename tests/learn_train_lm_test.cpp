@@ -25,19 +25,27 @@
 namespace lcprelax::learn {
 namespace {
 
-// Rosenbrock's function as a sum of squares, ℓ = (1 − x)² + 100(y − x²)², every sample equal.
-class RosenbrockResiduals : public Objective {
+// ℓᵢ = ‖rᵢ‖² and ∂ℓᵢ/∂θ = 2 gradient_sign·Jᵢᵀrᵢ from the residuals.
+class SumOfSquares : public Objective {
  public:
-  explicit RosenbrockResiduals(double jacobian_sign = 1.0) : sign_(jacobian_sign) {}
-  Index num_samples() const override { return 3; }
   std::string residuals_unavailable() const override { return {}; }
   SampleResult evaluate(Index i, const ParameterSet& theta, int t) override {
     const ResidualResult rr = evaluate_residuals(i, theta, t);
     SampleResult r;
     r.loss = rr.residual.squaredNorm();
-    r.gradient = 2.0 * sign_ * rr.jacobian.transpose() * rr.residual;
+    r.gradient = 2.0 * gradient_sign_ * rr.jacobian.transpose() * rr.residual;
     return r;
   }
+
+ protected:
+  double gradient_sign_ = 1.0;
+};
+
+// Rosenbrock's function as a sum of squares, ℓ = (1 − x)² + 100(y − x²)², every sample equal.
+class RosenbrockResiduals : public SumOfSquares {
+ public:
+  explicit RosenbrockResiduals(double jacobian_sign = 1.0) : sign_(jacobian_sign) { gradient_sign_ = jacobian_sign; }
+  Index num_samples() const override { return 3; }
   ResidualResult evaluate_residuals(Index, const ParameterSet& theta, int) override {
     const double x = theta[0].value, y = theta[1].value;
     ResidualResult r;
@@ -55,17 +63,9 @@ class RosenbrockResiduals : public Objective {
 
 // yᵢ = a·exp(b tᵢ) at tᵢ = i/4, fitted with rᵢ = a exp(b tᵢ) − yᵢ; a is a log parameter.
 constexpr double kA = 2.5, kB = -0.7;
-class ExponentialFit : public Objective {
+class ExponentialFit : public SumOfSquares {
  public:
   Index num_samples() const override { return 9; }
-  std::string residuals_unavailable() const override { return {}; }
-  SampleResult evaluate(Index i, const ParameterSet& theta, int t) override {
-    const ResidualResult rr = evaluate_residuals(i, theta, t);
-    SampleResult r;
-    r.loss = rr.residual.squaredNorm();
-    r.gradient = 2.0 * rr.jacobian.transpose() * rr.residual;
-    return r;
-  }
   ResidualResult evaluate_residuals(Index i, const ParameterSet& theta, int) override {
     const double a = theta[0].value, b = theta[1].value, t = 0.25 * i;
     ResidualResult r;

@@ -100,6 +100,20 @@ std::string island_failure(Index sample, const SceneTransition& t, std::size_t k
          (message.empty() ? "" : ": " + message);
 }
 
+// Counts island k's outcome in `stats`; false, with `message` naming the island, when its
+// solve has no solution.
+bool count_island(SceneObjectiveStats& stats, Index sample, const SceneTransition& t, std::size_t k,
+                  const ContactSystem& s, ContactStatus status, const std::string& why, std::string& message) {
+  ++stats.islands;
+  if (!has_solution(status)) {
+    ++stats.failed_islands;
+    message = island_failure(sample, t, k, s, status, why);
+    return false;
+  }
+  if (status == ContactStatus::solved_inaccurate) ++stats.inaccurate_islands;
+  return true;
+}
+
 }  // namespace
 
 StepContacts SceneObjective::begin_transition(Workspace& ws, Index sample, const ParameterSet& theta) {
@@ -166,14 +180,10 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
       case LossMethod::convex: r = convex_step_loss(s, ws.target, dt, settings_.convex); break;
     }
     ws.stats.seconds_loss += seconds_since(t0);
-    ++ws.stats.islands;
-    if (!has_solution(r.status)) {
-      ++ws.stats.failed_islands;
+    if (!count_island(ws.stats, sample, t, k, s, r.status, r.message, out.message)) {
       out.ok = false;
-      out.message = island_failure(sample, t, k, s, r.status, r.message);
       return out;
     }
-    if (r.status == ContactStatus::solved_inaccurate) ++ws.stats.inaccurate_islands;
     out.loss += r.loss;
     t0 = std::chrono::steady_clock::now();
     accumulate_world_gradient(world, found.contacts, s, dt, t.applied, r.grad, ws.gradient);
@@ -221,14 +231,10 @@ ResidualResult SceneObjective::evaluate_residuals(Index sample, const ParameterS
     const ContactSystem s = island_system(ws, found, k, t, in_island);
     const StepJacobianResult r = convex_step_jacobian(s, ws.target, dt, settings_.convex);
     ws.stats.seconds_loss += seconds_since(t0);
-    ++ws.stats.islands;
-    if (!has_solution(r.status)) {
-      ++ws.stats.failed_islands;
+    if (!count_island(ws.stats, sample, t, k, s, r.status, r.message, out.message)) {
       out.ok = false;
-      out.message = island_failure(sample, t, k, s, r.status, r.message);
       return out;
     }
-    if (r.status == ContactStatus::solved_inaccurate) ++ws.stats.inaccurate_islands;
     t0 = std::chrono::steady_clock::now();
     for (std::size_t j = 0; j < s.bodies.size(); ++j) {
       const Index row0 = 3 * static_cast<Index>(s.bodies[j]);
