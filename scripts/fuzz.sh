@@ -9,8 +9,7 @@
 # target after this many executions, e.g. 1000000; default: time only), FUZZ_TIMEOUT
 # (seconds per input taken as a hang, default 1; a loaded machine may need 3), FUZZ_PARALLEL
 # (targets run at the same time, default 1). A FUZZ_BUILD_DIR that is already configured
-# with LCPRELAX_FUZZ=ON (scripts/sanitize.sh's tree, where clang is installed) is used as
-# it is: only the fuzz targets are built there.
+# with LCPRELAX_FUZZ=ON is used as it is: only the fuzz targets are built there.
 # Corpora live in $FUZZ_BUILD_DIR/corpus/<target>/ (seeded from tests/data on each run, and
 # kept between runs); crashes in $FUZZ_BUILD_DIR/artifacts/, logs in $FUZZ_BUILD_DIR/logs/.
 # Prints the executions of each target and exits 1 if any target found a crash, a hang

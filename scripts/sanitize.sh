@@ -8,16 +8,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dir="${1:-build-asan}"
-# With clang (and its runtime libraries) the same tree also builds the libFuzzer targets
-# (LCPRELAX_FUZZ: the library instrumented with fuzzer-no-link too), so that
-# `FUZZ_BUILD_DIR=DIR scripts/fuzz.sh` runs them without a second build. Without clang:
-# GCC, and no fuzz targets.
-compiler=()
-if command -v clang++ >/dev/null 2>&1 && [ -n "$(clang++ -print-file-name=libclang_rt.fuzzer-x86_64.a 2>/dev/null | grep /)" ]; then
-  compiler=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DLCPRELAX_FUZZ=ON)
-fi
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
-  -DLCPRELAX_SANITIZE=ON -DLCPRELAX_BUILD_BENCH=OFF -DLCPRELAX_WITH_PETSC=OFF "${compiler[@]}"
+  -DLCPRELAX_SANITIZE=ON -DLCPRELAX_BUILD_BENCH=OFF -DLCPRELAX_WITH_PETSC=OFF
 cmake --build "$dir" -j2
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"

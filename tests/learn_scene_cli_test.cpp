@@ -91,18 +91,18 @@ TEST(CliLearnSceneOptions, InitFromContinuesAnEarlierRunWithLbfgs) {
 }
 
 // --optimizer lm (Levenberg–Marquardt) on the convex loss's residuals lowers the training
-// loss at every epoch (it accepts only steps that do) and halves it within 10 epochs; the
+// loss at every epoch (it accepts only steps that do) and lowers it by 40% within 6 epochs; the
 // hard and relaxed losses have no residuals (exit 2).
 TEST(CliLearnSceneOptions, LevenbergMarquardtOnTheConvexLoss) {
   const std::string log = temp_path("scene_lm.csv");
   const std::string common = "learn scene --bodies 10 --steps 30 --method convex --phase1-deviation 0 "
                              "--phase1-regularization 1e-6 --threads 2 --json";
   const CliRun start = run_cli(common + " --epochs 0");
-  const CliRun lm = run_cli(common + " --epochs 10 --optimizer lm --log '" + log + "'");
+  const CliRun lm = run_cli(common + " --epochs 6 --optimizer lm --log '" + log + "'");
   ASSERT_EQ(start.exit_code, 0) << start.err;
   ASSERT_EQ(lm.exit_code, 0) << lm.err;
   const auto j0 = nlohmann::json::parse(start.out), j = nlohmann::json::parse(lm.out);
-  EXPECT_LT(j["final_loss"].get<double>(), 0.5 * j0["final_loss"].get<double>()) << lm.out;
+  EXPECT_LT(j["final_loss"].get<double>(), 0.6 * j0["final_loss"].get<double>()) << lm.out;
   std::ifstream in(log);
   std::string line;
   std::getline(in, line);  // header
