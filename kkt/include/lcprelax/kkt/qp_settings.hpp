@@ -123,6 +123,20 @@ struct QpSettings {
   /// every run they saved 10% of the iterations on the 64 but lost LASER (a gap at its
   /// roundoff floor) and 3 of the 288, so the first run has none.
   int centrality_correctors = 2;
+  /// Multiplier-scaled third run (kkt/src/qp_solve.cpp): when the first run and the
+  /// conservative second run both end without a solution and the first run's largest
+  /// multiplier grew to at least this many times the largest multiplier of its start, one
+  /// more run from the cold start with every starting multiplier multiplied by that growth
+  /// (0 = never). Mehrotra's start (Mehrotra 1992, §7) makes slacks and multipliers about
+  /// equal; on problems whose optimal multipliers are orders of magnitude larger (LISWET:
+  /// multipliers ~ n²·|residual| of a convex fit), the slacks reach the boundary while the
+  /// multipliers are still small, and every later step is blocked after 1% of its length by
+  /// a row whose slack must shrink further (the infeasible central path bends sharply, as in
+  /// Wright, "Primal-Dual Interior-Point Methods", SIAM 1997, ch. 6). The failed run has
+  /// measured the multipliers' scale: starting there, the iteration converges (LISWET10
+  /// solved; tests/qp_multiplier_restart_test.cpp). Only reached by solves that would
+  /// otherwise fail, so solved problems and their run times do not change.
+  double multiplier_restart_growth = 100.0;
   int ruiz_iterations = 10;       ///< Ruiz equilibration passes (0 disables scaling)
   double step_fraction = 0.995;   ///< fraction to the boundary
   KktForm kkt_form = KktForm::automatic;
