@@ -18,6 +18,7 @@ constexpr int kFirstInfeasibilityCheck = 3;
 constexpr int kStallIterations = 15;  // no 10% gain in the worst scaled residual: stalled
 constexpr int kSteadyIterations = 5;  // ... unless the residuals still gain 10% within 5 iterations
 constexpr double kDivergence = 1e13;  // scaled iterate norm taken as divergence
+constexpr double kRefinementFailure = 1e-8;  // relative K0 residual after refinement taken as failure
 constexpr double kConservativeSigma = 0.1;   // least centring of the conservative second attempt
 
 void fill_residuals(QpInfo& info, const detail::Residuals& r) {
@@ -162,7 +163,7 @@ void QpSolver::Impl::run(QpInfo& info) {
     for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
     info.refinement_steps += newton_step();
     if (f.mg > 0 && delta_rows > 0 && may_drop_row_regularization &&
-        kkt.last_relative_residual() > settings.row_reg_drop_residual) {
+        kkt.last_relative_residual() > kRefinementFailure) {
       // The refinement against K0 stalled. The factorized inequality block is −(1/Dg + δ), so
       // on row i refinement contracts by about δ·Dg_i/(1 + δ·Dg_i): it fails once the active
       // rows' s_i/z_i = 1/Dg_i fall below δ and the regularized solution is far from K0's

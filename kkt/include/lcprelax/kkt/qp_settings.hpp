@@ -85,17 +85,6 @@ struct QpSettings {
   double reg_dual = 1e-9;         ///< static dual regularization δ (scaled problem)
   double reg_max = 1e-2;          ///< largest regularization tried after failed factorizations
   int max_refinement = 10;        ///< iterative refinement steps against the unregularized KKT
-  /// Relative K0 residual of the refined predictor step above which the inequality block's
-  /// regularization δ is dropped for the rest of the run (kkt/src/qp_ipm_loop.cpp; the block
-  /// −1/Dg stays negative definite, so the matrix stays quasi-definite, Vanderbei 1995). At
-  /// rows whose s/z falls below δ, refinement against the unregularized matrix contracts by
-  /// only δ·Dg/(1 + δ·Dg) per step; the step's error then stays in the rows' primal
-  /// residual, which stalls near 1e-9 while μ → 0, and the duality gap Σ z_i·r_i with it
-  /// (LISWET family: relative residuals 1e-9…1.4e-9 from μ ≈ 1e-8 on LISWET2, gap stuck at
-  /// 1.3e-5; tests/qp_row_regularization_test.cpp). Measured on the 64 shared
-  /// Maros–Meszaros problems: 1e-8 (before) leaves LISWET2 unsolved, 1e-9 and 1e-10 solve
-  /// it, 1e-11 loses QSIERRA (its δ is dropped too early).
-  double row_reg_drop_residual = 1e-10;
   /// Bound-multiplier steps from the dual-residual equation rather than z/s·dx + ξ
   /// (ipm_iterate.hpp); false only to measure what it fixes.
   bool exact_bound_steps = true;
