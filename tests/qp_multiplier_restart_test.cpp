@@ -12,7 +12,7 @@
 // (a = −1, p = 3 at every n; a = −1, p = 2 and a = 0.1, p = 0.5 at n = 10000), in 68–173
 // iterations of all three runs; the three with a = 0 (noise only, the LISWET2 kind: the
 // rows' primal residual stalls at 5e-10…9e-10 and the gap at 7e-6…2e-5, see
-// QpSolver's row regularization) still fail; the 22 solved before take the same iterations
+// the inequality block's δ in kkt/src/qp_ipm_loop.cpp) still fail; the 22 solved before take the same iterations
 // (the third run is reached only after two failed runs).
 #include <lcprelax/kkt/qp_solver.hpp>
 
