@@ -8,12 +8,12 @@
 // nearly affine, every row is active and the optimal multipliers are ~n² times the data's
 // residual, orders of magnitude above Mehrotra's starting multipliers (~0.1).
 // Measured (n ∈ {2000, 5000, 10000}; a ∈ {0.1, 1, −1} × p ∈ {2, 3, 0.5}, and a = 0: 30
-// problems): without the third run 8 end numerical_error; with it 5 of these are solved
-// (a = −1, p = 3 at every n; a = −1, p = 2 and a = 0.1, p = 0.5 at n = 10000), in 68–173
-// iterations of all three runs; the three with a = 0 (noise only, the LISWET2 kind: the
-// rows' primal residual stalls at 5e-10…9e-10 and the gap at 7e-6…2e-5, see
-// the inequality block's δ in kkt/src/qp_ipm_loop.cpp) still fail; the 22 solved before take the same iterations
-// (the third run is reached only after two failed runs).
+// problems): with neither the third run nor the conservative run's drop of the inequality
+// block's δ (QpSettings::conservative_row_reg_drop = 1e-8) 8 end numerical_error; the
+// third run solves 5 of them (a = −1, p = 3 at every n; a = −1, p = 2 and a = 0.1, p = 0.5
+// at n = 10000) in 68–173 iterations of all three runs, the drop the three with a = 0
+// (noise only, tests/qp_row_regularization_test.cpp); the 22 solved by the first run take
+// the same iterations (the third run is reached only after two failed runs).
 #include <lcprelax/kkt/qp_solver.hpp>
 
 #include <gtest/gtest.h>

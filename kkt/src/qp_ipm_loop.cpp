@@ -163,8 +163,10 @@ void QpSolver::Impl::run(QpInfo& info) {
     for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
     info.refinement_steps += newton_step();
     if (f.mg > 0 && delta_rows > 0 && may_drop_row_regularization &&
-        kkt.last_relative_residual() > kRefinementFailure) {
-      // The refinement against K0 stalled. The factorized inequality block is −(1/Dg + δ), so
+        kkt.last_relative_residual() > (conservative ? settings.conservative_row_reg_drop : kRefinementFailure)) {
+      // The refinement against K0 stalled (above 1e-8; in the conservative second run above
+      // QpSettings::conservative_row_reg_drop, 1e-9: LISWET2's refinement sits at 1.0…1.4e-9
+      // while its rows' primal residual stalls). The factorized inequality block is −(1/Dg + δ), so
       // on row i refinement contracts by about δ·Dg_i/(1 + δ·Dg_i): it fails once the active
       // rows' s_i/z_i = 1/Dg_i fall below δ and the regularized solution is far from K0's
       // (on LISWET1 the smooth modes of GGᵀ have eigenvalues ~1e-15 ≪ δ). The block −1/Dg is

@@ -21,6 +21,7 @@ std::string QpSettings::validation_error() const {
   positive("reg_primal", reg_primal);
   positive("reg_dual", reg_dual);
   positive("reg_max", reg_max);
+  positive("conservative_row_reg_drop", conservative_row_reg_drop);
   if (os.str().empty() && max_iter < 1) os << "max_iter = " << max_iter << " must be >= 1";
   if (os.str().empty() && max_refinement < 0) os << "max_refinement = " << max_refinement << " must be >= 0";
   if (os.str().empty() && centrality_correctors < 0)
