@@ -21,10 +21,13 @@ std::string QpSettings::validation_error() const {
   positive("reg_primal", reg_primal);
   positive("reg_dual", reg_dual);
   positive("reg_max", reg_max);
+  positive("conservative_row_reg_drop", conservative_row_reg_drop);
   if (os.str().empty() && max_iter < 1) os << "max_iter = " << max_iter << " must be >= 1";
   if (os.str().empty() && max_refinement < 0) os << "max_refinement = " << max_refinement << " must be >= 0";
   if (os.str().empty() && centrality_correctors < 0)
     os << "centrality_correctors = " << centrality_correctors << " must be >= 0";
+  if (os.str().empty() && !(multiplier_restart_growth >= 0))
+    os << "multiplier_restart_growth = " << multiplier_restart_growth << " must be >= 0";
   if (os.str().empty() && ruiz_iterations < 0) os << "ruiz_iterations = " << ruiz_iterations << " must be >= 0";
   if (os.str().empty() && !(step_fraction > 0 && step_fraction < 1))
     os << "step_fraction = " << step_fraction << " must be in (0, 1)";

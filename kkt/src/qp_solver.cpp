@@ -208,6 +208,7 @@ void QpSolver::Impl::load_unscaled_point(const Vector& x, const Vector& y, const
 bool QpSolver::Impl::initial_point(QpInfo& info) {
   detail::Workspace& w = work;
   it.init_sides(form);
+  start_zmax = 0.0;  // no multiplier-scaled third run after a warm start
   if (has_warm_start) {
     load_unscaled_point(warm.x, warm.y, warm.z, warm.z_bounds);
     const Vector &zg = w.zg, &zb = w.zb;
@@ -266,7 +267,19 @@ bool QpSolver::Impl::initial_point(QpInfo& info) {
     s->s.array() += std::max(shift_s, 1e-2);
     s->z.array() += std::max(shift_z, 1e-2);
   }
+  start_zmax = 0.0;
+  for (detail::Side* s : it.sides()) {
+    s->z *= start_multiplier_scale;  // 1 except in the multiplier-scaled third run (qp_solve.cpp)
+    if (s->size()) start_zmax = std::max(start_zmax, s->z.maxCoeff());
+  }
   return true;
+}
+
+double QpSolver::Impl::multiplier_growth(const detail::Iterate& final) const {
+  double zmax = 0.0;
+  for (const detail::Side* s : final.sides())
+    if (s->size()) zmax = std::max(zmax, s->z.maxCoeff());
+  return start_zmax > 0 && std::isfinite(zmax) ? zmax / start_zmax : 0.0;
 }
 
 int QpSolver::numeric_factorizations() const { return impl_->kkt.numeric_factorizations(); }

@@ -126,6 +126,14 @@ struct QpSolver::Impl {
   /// Second attempt after a stalled Mehrotra run (qp_ipm_loop.cpp): centring σ ≥
   /// kConservativeSigma and no second-order term in the corrector.
   bool conservative = false;
+  /// Factor by which the cold start's multipliers are multiplied (1 except in the
+  /// multiplier-scaled third run, qp_solve.cpp; QpSettings::multiplier_restart_growth).
+  double start_multiplier_scale = 1.0;
+  /// Largest multiplier of the cold start (after the scale), set by initial_point().
+  double start_zmax = 0.0;
+  /// How many times the largest multiplier of `final` exceeds start_zmax of the run that
+  /// produced it (qp_solve.cpp's first run).
+  double multiplier_growth(const detail::Iterate& final) const;
   bool factorize(QpInfo& info);
   /// Newton step for work.rd, work.rp and the sides' rc into work.dx, dy, dz and the
   /// sides' ds, dz; returns refinement steps.

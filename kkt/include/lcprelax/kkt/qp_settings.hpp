@@ -85,6 +85,20 @@ struct QpSettings {
   double reg_dual = 1e-9;         ///< static dual regularization δ (scaled problem)
   double reg_max = 1e-2;          ///< largest regularization tried after failed factorizations
   int max_refinement = 10;        ///< iterative refinement steps against the unregularized KKT
+  /// Relative K0 residual of the refined predictor step above which the conservative second
+  /// run (the one after a stalled first run, qp_solver.hpp) drops the inequality block's
+  /// regularization δ for the rest of that run; the first run drops it only above 1e-8
+  /// (kkt/src/qp_ipm_loop.cpp; without δ there the block −1/Dg is still negative definite,
+  /// so the matrix stays quasi-definite: Vanderbei 1995). At rows whose s/z falls below δ,
+  /// refinement against the unregularized matrix contracts by only δ·Dg/(1 + δ·Dg) per
+  /// step; the step's error then stays in the rows' primal residual, which stalls near 1e-9
+  /// while μ → 0, and the gap Σ zᵢ·rᵢ with it (LISWET2: relative residuals 1.0…1.4e-9 from
+  /// μ ≈ 1e-8 on, gap stuck at 1.3e-5; tests/qp_row_regularization_test.cpp). Measured: with
+  /// 1e-9 (or 1e-10) in the first run too, LISWET2 is solved there, but solved contact
+  /// problems move out of their tests' tolerances (convex 50-box stack of
+  /// tests/models_stiff_cases_test.cpp: residual 6.7e-15 → 1.5e-7), so only the run that
+  /// follows a failure uses it.
+  double conservative_row_reg_drop = 1e-9;
   /// Bound-multiplier steps from the dual-residual equation rather than z/s·dx + ξ
   /// (ipm_iterate.hpp); false only to measure what it fixes.
   bool exact_bound_steps = true;
@@ -112,6 +126,20 @@ struct QpSettings {
   /// every run they saved 10% of the iterations on the 64 but lost LASER (a gap at its
   /// roundoff floor) and 3 of the 288, so the first run has none.
   int centrality_correctors = 2;
+  /// Multiplier-scaled third run (kkt/src/qp_solve.cpp): when the first run and the
+  /// conservative second run both end without a solution and the first run's largest
+  /// multiplier grew to at least this many times the largest multiplier of its start, one
+  /// more run from the cold start with every starting multiplier multiplied by that growth
+  /// (0 = never). Mehrotra's start (Mehrotra 1992, §7) makes slacks and multipliers about
+  /// equal; on problems whose optimal multipliers are orders of magnitude larger (LISWET:
+  /// multipliers ~ n²·|residual| of a convex fit), the slacks reach the boundary while the
+  /// multipliers are still small, and every later step is blocked after 1% of its length by
+  /// a row whose slack must shrink further (the infeasible central path bends sharply, as in
+  /// Wright, "Primal-Dual Interior-Point Methods", SIAM 1997, ch. 6). The failed run has
+  /// measured the multipliers' scale: starting there, the iteration converges (LISWET10
+  /// solved; tests/qp_multiplier_restart_test.cpp). Only reached by solves that would
+  /// otherwise fail, so solved problems and their run times do not change.
+  double multiplier_restart_growth = 100.0;
   int ruiz_iterations = 10;       ///< Ruiz equilibration passes (0 disables scaling)
   double step_fraction = 0.995;   ///< fraction to the boundary
   KktForm kkt_form = KktForm::automatic;

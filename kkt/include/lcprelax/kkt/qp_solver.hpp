@@ -20,9 +20,13 @@
 //
 // A run that stalls (numerical_error, e.g. "no progress in the residuals": Mehrotra's
 // corrector can cycle on degenerate problems) is repeated once from the start with a plain
-// centred path-following step (σ ≥ 0.1, no second-order correction); its result is kept
-// when it is solved (QpInfo::message says so, iterations count both runs), else the first
-// run's outcome is reported.
+// centred path-following step (σ ≥ 0.1, no second-order correction, Gondzio's correctors,
+// the inequality block's δ dropped at QpSettings::conservative_row_reg_drop); its result is kept
+// when it is solved (QpInfo::message says so, iterations count both runs). If it fails too
+// and the first run's largest multiplier grew at least QpSettings::multiplier_restart_growth
+// times over its start, a third run starts from the cold start with its multipliers
+// multiplied by that growth (kkt/src/qp_solve.cpp); otherwise, or if that run fails too,
+// the first run's outcome is reported.
 //
 // Polishing (QpSettings::polish, Stellato et al., "OSQP", Math. Prog. Comp. 2020, §5.2): a
 // run that ends solved_inaccurate, numerical_error or max_iterations guesses the active set
