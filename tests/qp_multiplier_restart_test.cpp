@@ -4,7 +4,7 @@
 //
 // Family (make_concave_fit): LISWET-like convex fits (Li & Swetits' problems of the
 // Maros–Meszaros collection) to concave data, min ½‖x − c‖² subject to
-// x_i − 2x_{i+1} + x_{i+2} ≥ 0, c_j = 1 − a·t_j^p + 0.1·sin(j + 1), t_j = j/(n − 1). The fit is
+// x_i − 2x_{i+1} + x_{i+2} ≥ 0, c_j = 1 + a·t_j^p + 0.1·sin(j + 1), t_j = j/(n − 1). The fit is
 // nearly affine, every row is active and the optimal multipliers are ~n² times the data's
 // residual, orders of magnitude above Mehrotra's starting multipliers (~0.1).
 // Measured (n ∈ {2000, 5000, 10000}; a ∈ {0.1, 1, −1} × p ∈ {2, 3, 0.5}, and a = 0: 30
@@ -14,58 +14,23 @@
 // at n = 10000) in 68–173 iterations of all three runs, the drop the three with a = 0
 // (noise only, tests/qp_row_regularization_test.cpp); the 22 solved by the first run take
 // the same iterations (the third run is reached only after two failed runs).
-#include <lcprelax/kkt/qp_solver.hpp>
+#include "liswet_fit.hpp"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
-#include <vector>
 
 namespace lcprelax {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing_support::expect_liswet_solved;
 
+// c_j = 1 + a·t_j^p + 0.1·sin(j + 1) (the header comment's family).
 QpProblem make_concave_fit(Index n, double a, double p_exp) {
-  QpProblem p;
-  const Index m = n - 2;
-  std::vector<Triplet> tp, tg;
-  for (Index j = 0; j < n; ++j) tp.emplace_back(j, j, 1.0);
-  p.P.resize(n, n);
-  p.P.setFromTriplets(tp.begin(), tp.end());
-  p.q.resize(n);
-  for (Index j = 0; j < n; ++j) {
-    const double t = static_cast<double>(j) / static_cast<double>(n - 1);
-    p.q(j) = -(1.0 + a * std::pow(t, p_exp) + 0.1 * std::sin(static_cast<double>(j + 1)));
-  }
-  for (Index i = 0; i < m; ++i) {
-    tg.emplace_back(i, i, 1.0);
-    tg.emplace_back(i, i + 1, -2.0);
-    tg.emplace_back(i, i + 2, 1.0);
-  }
-  p.A.resize(0, n);
-  p.b.resize(0);
-  p.G.resize(m, n);
-  p.G.setFromTriplets(tg.begin(), tg.end());
-  p.l = Vector::Zero(m);
-  p.u = Vector::Constant(m, kInf);
-  p.xl = Vector::Constant(n, -kInf);
-  p.xu = Vector::Constant(n, kInf);
-  return p;
-}
-
-// Residuals of qp_settings.hpp recomputed from the data (A is empty, x is free, l = 0).
-void expect_solved(const QpProblem& p, const QpResult& r) {
-  ASSERT_EQ(r.info.status, QpStatus::solved) << r.info.message;
-  const Vector Gx = p.G * r.x, Px = p.P.selfadjointView<Eigen::Upper>() * r.x;
-  EXPECT_LE(std::max(0.0, (p.l - Gx).maxCoeff()), 2e-9);
-  EXPECT_LE((Px + p.q + p.G.transpose() * r.z + r.z_bounds).lpNorm<Eigen::Infinity>(), 2e-9);
-  const long double gap = static_cast<long double>(r.x.dot(Px)) + static_cast<long double>(p.q.dot(r.x));
-  EXPECT_LE(std::fabs(static_cast<double>(gap)), 2e-9);  // l = 0: the support terms vanish
-  EXPECT_LE(r.z.maxCoeff(), 2e-9) << "lower sides only: z <= 0";
+  return testing_support::make_liswet_fit(n, [&](double t, Index j) {
+    return 1.0 + a * std::pow(t, p_exp) + 0.1 * std::sin(static_cast<double>(j + 1));
+  });
 }
 
 TEST(QpMultiplierRestart, ConcaveFitSolvedByTheScaledRun) {
@@ -75,7 +40,7 @@ TEST(QpMultiplierRestart, ConcaveFitSolvedByTheScaledRun) {
     QpSolver solver;
     solver.setup(p);
     const QpResult& r = solver.solve();
-    expect_solved(p, r);
+    expect_liswet_solved(p, r);
     EXPECT_NE(r.info.message.find("multiplier-scaled third run"), std::string::npos) << r.info.message;
     // The optimal multipliers are far above the cold start's (~0.1).
     EXPECT_GT(-r.z.minCoeff(), 1e3);
@@ -96,7 +61,7 @@ TEST(QpMultiplierRestart, SolvedProblemsDoNotReachIt) {
   QpSolver solver;
   solver.setup(p);
   const QpResult& r = solver.solve();
-  expect_solved(p, r);
+  expect_liswet_solved(p, r);
   QpSettings without;
   without.multiplier_restart_growth = 0.0;
   QpSolver plain(without);

@@ -7,62 +7,23 @@
 // convex data fitting), min ½‖x − c‖² subject to x_i − 2x_{i+1} + x_{i+2} ≥ 0, with c_j =
 // offset + poly·t_j² + noise·sin(j + 1) at t_j = j/(n − 1). The noise makes most rows
 // active at the optimum with multipliers that grow with n, and GGᵀ has eigenvalues ~1/n⁴.
-#include <lcprelax/kkt/qp_solver.hpp>
+#include "liswet_fit.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <algorithm>
 #include <string>
-#include <limits>
-#include <vector>
 
 namespace lcprelax {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing_support::expect_liswet_solved;
 
-// LISWET-like: min ½‖x − c‖² s.t. x_i − 2x_{i+1} + x_{i+2} ≥ 0.
+// c_j = offset + poly·t_j² + noise·sin(j + 1).
 QpProblem make_liswet(Index n, double offset, double poly, double noise) {
-  QpProblem p;
-  const Index m = n - 2;
-  std::vector<Triplet> tp, tg;
-  for (Index j = 0; j < n; ++j) tp.emplace_back(j, j, 1.0);
-  p.P.resize(n, n);
-  p.P.setFromTriplets(tp.begin(), tp.end());
-  p.q.resize(n);
-  for (Index j = 0; j < n; ++j) {
-    const double t = static_cast<double>(j) / static_cast<double>(n - 1);
-    p.q(j) = -(offset + poly * t * t + noise * std::sin(static_cast<double>(j + 1)));
-  }
-  for (Index i = 0; i < m; ++i) {
-    tg.emplace_back(i, i, 1.0);
-    tg.emplace_back(i, i + 1, -2.0);
-    tg.emplace_back(i, i + 2, 1.0);
-  }
-  p.A.resize(0, n);
-  p.b.resize(0);
-  p.G.resize(m, n);
-  p.G.setFromTriplets(tg.begin(), tg.end());
-  p.l = Vector::Zero(m);
-  p.u = Vector::Constant(m, kInf);
-  p.xl = Vector::Constant(n, -kInf);
-  p.xu = Vector::Constant(n, kInf);
-  return p;
-}
-
-// Residuals of qp_settings.hpp recomputed from the data (A is empty, x is free).
-void expect_solved(const QpProblem& p, const QpResult& r) {
-  ASSERT_EQ(r.info.status, QpStatus::solved) << r.info.message;
-  const Vector Gx = p.G * r.x, Px = p.P.selfadjointView<Eigen::Upper>() * r.x;
-  const double primal = std::max(0.0, (p.l - Gx).maxCoeff());
-  const double dual = (Px + p.q + p.G.transpose() * r.z + r.z_bounds).lpNorm<Eigen::Infinity>();
-  long double gap = static_cast<long double>(r.x.dot(Px)) + static_cast<long double>(p.q.dot(r.x));
-  for (Index i = 0; i < r.z.size(); ++i) gap += static_cast<long double>(p.l(i)) * std::min(r.z(i), 0.0);
-  EXPECT_LE(primal, 2e-9);
-  EXPECT_LE(dual, 2e-9);
-  EXPECT_LE(std::fabs(static_cast<double>(gap)), 2e-9);
-  EXPECT_GE(r.z.maxCoeff(), -2e-9) << "a lower side has z <= 0";
+  return testing_support::make_liswet_fit(n, [&](double t, Index j) {
+    return offset + poly * t * t + noise * std::sin(static_cast<double>(j + 1));
+  });
 }
 
 // Measured on the family (offset 1; n = 2000, 5000, 10000; smooth part 0, ±t^p or 0.1t^p
@@ -80,7 +41,7 @@ TEST(QpRowRegularization, NoisyConvexFitSolvedOnlyWithTheDrop) {
     QpSolver solver;  // default conservative_row_reg_drop: solved by the second run
     solver.setup(p);
     const QpResult& solved = solver.solve();
-    expect_solved(p, solved);
+    expect_liswet_solved(p, solved);
     EXPECT_NE(solved.info.message.find("conservative second run"), std::string::npos) << solved.info.message;
 
     QpSettings before;
@@ -97,7 +58,7 @@ TEST(QpRowRegularization, SmoothConvexFitUnchanged) {
   const QpProblem p = make_liswet(2000, 1.0, 2.0, 0.1);
   QpSolver solver;
   solver.setup(p);
-  expect_solved(p, solver.solve());
+  expect_liswet_solved(p, solver.solve());
   EXPECT_LE(solver.result().info.iterations, 25);
 }
 
