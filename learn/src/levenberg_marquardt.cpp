@@ -106,7 +106,6 @@ LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::v
       lambda = std::max(lambda, 1e-300);
       optimizer.lm_set_damping(lambda, nu, true);
       it.accepted = true;
-      it.lambda = lambda;
       return it;
     }
     theta.set_free(xi0);
@@ -116,7 +115,6 @@ LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::v
   }
   // No decrease at any damping tried: θ stays; the damping restarts from its initial value.
   optimizer.lm_set_damping(kInitialDamping * max_diag, 2.0, false);
-  it.lambda = kInitialDamping * max_diag;
   return it;
 }
 

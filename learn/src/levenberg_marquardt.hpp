@@ -38,7 +38,6 @@ struct LmIteration {
   long evaluated = 0;      ///< sample evaluations (residual and trial) over the iteration
   int failed = 0;          ///< failed sample evaluations over the iteration
   std::string first_failure;
-  double lambda = 0.0;     ///< the damping after the iteration
 };
 
 /// One iteration from the current θ over `samples` (the whole training set).

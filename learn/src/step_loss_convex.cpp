@@ -211,10 +211,10 @@ void check_call(const ContactSystem& s, const Vector& target, double dt, const C
   check_input(s, target, dt);
 }
 
-void mark_inaccurate_adjoint(StepLossResult& r, double adjoint) {
+void mark_inaccurate_adjoint(ContactStatus& status, std::string& message, double adjoint) {
   if (adjoint <= kAdjointResidualTolerance) return;
-  r.status = ContactStatus::solved_inaccurate;
-  r.message = "adjoint residual " + std::to_string(adjoint) +
+  status = ContactStatus::solved_inaccurate;
+  message = "adjoint residual " + std::to_string(adjoint) +
               " > 1e-6: degenerate solution, the gradient is that of the final interior iterate";
 }
 
@@ -232,7 +232,7 @@ StepLossResult convex_step_loss(const ContactSystem& s, const Vector& target, do
   const auto t0 = detail::Clock::now();
   r.loss = (r.v_next - target).squaredNorm();
   const double adjoint = solve.backward(2.0 * (r.v_next - target), r.grad);
-  mark_inaccurate_adjoint(r, adjoint);
+  mark_inaccurate_adjoint(r.status, r.message, adjoint);
   t.backward = detail::since(t0);
   return r;
 }
@@ -258,12 +258,7 @@ StepJacobianResult convex_step_jacobian(const ContactSystem& s, const Vector& ta
     adjoint = std::max(adjoint, solve.backward(e, out.rows[static_cast<std::size_t>(k)]));
     e(k) = 0.0;
   }
-  StepLossResult marked;
-  marked.status = out.status;
-  marked.message = out.message;
-  mark_inaccurate_adjoint(marked, adjoint);
-  out.status = marked.status;
-  out.message = marked.message;
+  mark_inaccurate_adjoint(out.status, out.message, adjoint);
   return out;
 }
 
