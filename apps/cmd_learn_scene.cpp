@@ -68,6 +68,7 @@ struct LearnSceneOptions {
   double deviation = learn::ConvexStepLossSettings{}.deviation;
   bool phase1_deviation = learn::ConvexStepLossSettings{}.phase1_deviation;
   double beta2 = learn::OptimizerSettings{}.beta2;
+  bool lm_geodesic = learn::OptimizerSettings{}.lm_geodesic_acceleration;
   std::string log, plot;
   bool json = false;
   LearnCheckpointOptions checkpoint;
@@ -166,6 +167,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   require_option(std::isfinite(o.noise) && o.noise >= 0, "--noise", "must be finite and >= 0");
   require_option(std::isfinite(o.perturb) && o.perturb >= 0 && o.perturb < 1, "--perturb", "must be in [0, 1)");
   require_option(std::isfinite(o.lr_decay) && o.lr_decay >= 0, "--lr-decay", "must be finite and >= 0");
+  require_option(!o.lm_geodesic || o.optimizer == "lm", "--lm-geodesic", "needs --optimizer lm");
   if (!o.plot.empty()) {
     std::string ext = std::filesystem::path(o.plot).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -177,6 +179,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
                                                 learn::OptimizerSettings{}.momentum, o.json, o.log, o.stop);
   t.optimizer.decay = o.lr_decay;
   t.optimizer.beta2 = o.beta2;
+  t.optimizer.lm_geodesic_acceleration = o.lm_geodesic;
   apply_learn_checkpoint_options(app, o.checkpoint, t);
 
   // --softening overrides the scene's for the generated data and the loss.
@@ -312,6 +315,8 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--init-from", o->init_from,
                   "values from the \"learned\" map of an earlier run's --json result: the initial values of the learned parameters (replacing --perturb's), the fixed values of the others");
   app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
+  app->add_flag("--lm-geodesic", o->lm_geodesic,
+               "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");
   app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia; lengths in units of their class radius; radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");

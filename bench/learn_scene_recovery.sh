@@ -6,6 +6,7 @@
 #   convex      the convex loss on data of the convex model, unbiased (deviation penalty in
 #               phase 2 only, phase-1 regularization 1e-6), Levenberg–Marquardt (--optimizer
 #               lm), at most 200 epochs;
+#   convex_geo  the same with the geodesic acceleration (--lm-geodesic);
 #   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
 #               convex model's class: what it recovers there).
 # Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and
@@ -27,8 +28,9 @@ for seed in $SEEDS; do
     case $run in
       relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
       convex) args="--method convex $LM" ;;
+      convex_geo) args="--method convex $LM --lm-geodesic" ;;
       convex_lcp) args="--method convex --data-model lcp $LM" ;;
-      *) echo "unknown run '$run' (relaxed, convex, convex_lcp)" >&2; exit 2 ;;
+      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
     echo "== learn scene $args --bodies $BODIES --seed $seed" >&2

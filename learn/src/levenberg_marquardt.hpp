@@ -19,6 +19,13 @@
 // is finite. At most kMaxTrials = 30 trials; without an accepted one θ stays at ξ₀ and the
 // run ends (a kink where no damped step decreases the loss, or the loss's noise floor).
 // The damping (λ, ν) is kept in the optimizer (checkpointed with it).
+// With OptimizerSettings::lm_geodesic_acceleration each trial's step v (capped as above) gets
+// the geodesic acceleration of Transtrum & Sethna ("Improvements to the Levenberg–Marquardt
+// algorithm for nonlinear least-squares minimization", 2012): a = −(A + λD)⁻¹ J̃ᵀ r_vv, with
+// r_vv the residuals' second derivative along v by a second difference at ξ₀ + 0.1 v (one
+// more residual and Jacobian pass over the training set per trial); the step is v + a/2
+// (capped again), and a trial with 2‖a‖_D/‖v‖_D > 0.75 is rejected like one that does not
+// decrease the loss. A sample that fails at ξ₀ + 0.1 v leaves the trial unaccelerated.
 #include <lcprelax/learn/optimizer.hpp>
 #include <lcprelax/learn/parameters.hpp>
 #include <lcprelax/learn/trainer.hpp>

@@ -48,6 +48,10 @@ struct OptimizerSettings {
   double decay = 0.0;           ///< schedule α/(1 + decay·k), ≥ 0
   double clip_norm = std::numeric_limits<double>::infinity();  ///< > 0 (sgd, adam)
   int memory = 10;              ///< lbfgs: (s, y) pairs kept, ≥ 1
+  /// lm: add the geodesic acceleration to each trial step (Transtrum & Sethna 2012; one
+  /// more residual and Jacobian evaluation of the training set per trial,
+  /// learn/src/levenberg_marquardt.hpp).
+  bool lm_geodesic_acceleration = false;
   /// Empty if valid, else a message naming the first bad field.
   std::string validation_error() const;
 };
