@@ -102,7 +102,8 @@ CheckpointIdentity checkpoint_identity(const Objective& objective, const Paramet
                                    " momentum " + hex_double(o.momentum) + " beta1 " + hex_double(o.beta1) + " beta2 " +
                                    hex_double(o.beta2) + " epsilon " + hex_double(o.epsilon) + " decay " +
                                    hex_double(o.decay) + " clip_norm " + hex_double(o.clip_norm) +
-                                   (o.kind == OptimizerKind::lbfgs ? " memory " + std::to_string(o.memory) : ""));
+                                   (o.kind == OptimizerKind::lbfgs ? " memory " + std::to_string(o.memory) : "") +
+                                   (o.kind == OptimizerKind::lm && o.lm_geodesic_acceleration ? " geodesic" : ""));
   id.emplace_back("convergence test", "rel_loss_tol " + hex_double(settings.rel_loss_tol) + " grad_tol " +
                                           hex_double(settings.grad_tol) + " patience " + std::to_string(settings.patience));
   id.emplace_back("MPI ranks", std::to_string(settings.distributed ? mpi::mpi_size() : 1));
