@@ -30,6 +30,7 @@
 #include "cmd_learn_checkpoint.hpp"
 
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/learn/prior.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
@@ -69,6 +70,7 @@ struct LearnSceneOptions {
   bool phase1_deviation = learn::ConvexStepLossSettings{}.phase1_deviation;
   double beta2 = learn::OptimizerSettings{}.beta2;
   bool lm_geodesic = learn::OptimizerSettings{}.lm_geodesic_acceleration;
+  double prior_weight = 0.0;
   std::string log, plot;
   bool json = false;
   LearnCheckpointOptions checkpoint;
@@ -168,6 +170,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   require_option(std::isfinite(o.perturb) && o.perturb >= 0 && o.perturb < 1, "--perturb", "must be in [0, 1)");
   require_option(std::isfinite(o.lr_decay) && o.lr_decay >= 0, "--lr-decay", "must be finite and >= 0");
   require_option(!o.lm_geodesic || o.optimizer == "lm", "--lm-geodesic", "needs --optimizer lm");
+  require_option(std::isfinite(o.prior_weight) && o.prior_weight >= 0, "--prior-weight", "must be finite and >= 0");
   if (!o.plot.empty()) {
     std::string ext = std::filesystem::path(o.plot).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -220,17 +223,20 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   learn::ParameterSet theta = learn::perturb_scene_parameters(truth, map, o.perturb, o.seed);
   if (!o.init_from.empty()) set_initial_values_from(o.init_from, theta);
   const learn::ParameterSet initial = theta;
-  learn::SceneObjective objective(data, map, ls);
+  learn::SceneObjective scene_objective(data, map, ls);
+  learn::PriorObjective prior(scene_objective, initial, o.prior_weight);
+  learn::Objective& objective = o.prior_weight > 0 ? static_cast<learn::Objective&>(prior) : scene_objective;
   std::vector<Index> training, validation;
   learn::split_samples(objective.num_samples(), 0.2, o.seed, training, validation);
 
   Stopwatch clock;
   learn::TrainResult result;
   if (o.epochs > 0) result = learn::train(objective, theta, training, validation, t);
-  const learn::BatchResult final_eval = learn::evaluate_mean(objective, theta, training, o.threads, t.distributed);
+  // The data loss, without the prior's term.
+  const learn::BatchResult final_eval = learn::evaluate_mean(scene_objective, theta, training, o.threads, t.distributed);
   const double seconds = clock.seconds();
   if (!o.plot.empty() && mpi::mpi_rank() == 0) write_plot(o.plot, result, truth, initial, map);
-  const learn::SceneObjectiveStats st = objective.stats();
+  const learn::SceneObjectiveStats st = scene_objective.stats();
 
   Json j;
   j["method"] = learn::to_string(ls.method);
@@ -249,6 +255,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   j["relative_error"] = errors;
   j["max_relative_error"] = number_or_null(worst);
   j["final_loss"] = number_or_null(final_eval.loss);
+  j["prior_weight"] = o.prior_weight;
   add_train_outcome(j, result, o.epochs);
   j["seconds"] = seconds;
   j["bodies"] = static_cast<int>(data.scene.world.bodies.size());
@@ -317,6 +324,9 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_flag("--lm-geodesic", o->lm_geodesic,
                "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");
+  app->add_option("--prior-weight", o->prior_weight,
+                  "w of a Gaussian prior w*|xi - xi0|^2 on the free parameters, centred on the initial values (0: none); biased by O(w): continue with --init-from and no prior")
+      ->capture_default_str();
   app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia; lengths in units of their class radius; radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");

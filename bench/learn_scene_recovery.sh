@@ -7,6 +7,10 @@
 #               phase 2 only, phase-1 regularization 1e-6), Levenberg–Marquardt (--optimizer
 #               lm), at most 200 epochs;
 #   convex_geo  the same with the geodesic acceleration (--lm-geodesic);
+#   convex_map  the same in two runs: first with a Gaussian prior on the free parameters
+#               centred on the initial values (--prior-weight $PRIOR, default 1), then
+#               without it from the first run's result (--init-from), which removes the
+#               prior's bias; the first run's JSON is kept as <run>_<bodies>_seed<S>.stage1;
 #   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
 #               convex model's class: what it recovers there).
 # Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and
@@ -19,6 +23,7 @@ BUILD=${1:-build}
 SEEDS=${2:-1}
 BODIES=${3:-30}
 RUNS=${4:-relaxed convex convex_lcp}
+PRIOR=${PRIOR:-1}
 R=bench/results
 OUT=$R/learn_scene_recovery
 mkdir -p "$OUT"
@@ -29,10 +34,18 @@ for seed in $SEEDS; do
       relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
       convex) args="--method convex $LM" ;;
       convex_geo) args="--method convex $LM --lm-geodesic" ;;
+      convex_map) ;;
       convex_lcp) args="--method convex --data-model lcp $LM" ;;
-      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_lcp)" >&2; exit 2 ;;
+      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_map, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
+    if [ "$run" = convex_map ]; then
+      echo "== learn scene --method convex $LM --prior-weight $PRIOR --bodies $BODIES --seed $seed" >&2
+      # shellcheck disable=SC2086
+      "$BUILD/apps/lcprelax" learn scene --method convex $LM --prior-weight "$PRIOR" --bodies "$BODIES" \
+        --seed "$seed" --json > "$OUT/${run}_${BODIES}_seed${seed}.stage1"
+      args="--method convex $LM --init-from $OUT/${run}_${BODIES}_seed${seed}.stage1"
+    fi
     echo "== learn scene $args --bodies $BODIES --seed $seed" >&2
     # shellcheck disable=SC2086
     "$BUILD/apps/lcprelax" learn scene $args --bodies "$BODIES" --seed "$seed" --json > "$f"
@@ -47,8 +60,12 @@ for f in sorted(glob.glob(os.path.join(sys.argv[1], "*.json"))):
     def worst(tag):
         v = [x for k, x in e.items() if (tag in k if tag == ".vertex" else k.endswith(tag))]
         return "%.4g" % max(v) if v else ""
-    print(",".join([os.path.basename(f)[:-5], j["method"], str(j["epochs"]), j["stop_reason"].replace(",", ";"),
-                    "%.1f" % j["seconds"], str(j["transitions"]), "%.4g" % j["final_loss"], "%.4g" % e["mu"],
+    epochs, seconds = j["epochs"], j["seconds"]
+    if os.path.exists(f[:-5] + ".stage1"):  # convex_map: both runs' epochs and time
+        s1 = json.load(open(f[:-5] + ".stage1"))
+        epochs, seconds = epochs + s1["epochs"], seconds + s1["seconds"]
+    print(",".join([os.path.basename(f)[:-5], j["method"], str(epochs), j["stop_reason"].replace(",", ";"),
+                    "%.1f" % seconds, str(j["transitions"]), "%.4g" % j["final_loss"], "%.4g" % e["mu"],
                     worst("mass"), worst("inertia"), worst(".vertex"), str(j["failed"])]))
 PY
 column -s, -t < "$R/learn_scene_recovery.csv"

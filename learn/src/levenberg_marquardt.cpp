@@ -73,6 +73,7 @@ Vector pulled_back_curvature(Objective& objective, ParameterSet& theta, const Ve
                              const std::vector<Vector>& base, long expected, LmIteration& it) {
   const Index n = theta.size();
   theta.set_free(xi0 + kGeodesicStep * v);
+  objective.prepare(theta, resolve_threads(threads));
   const Vector chain = theta.chain_gradient(Vector::Ones(n));
   const SampleFunction f = [&](Index i, int t) {
     SampleResult out;
