@@ -160,7 +160,7 @@ int run_learn_polygon(const LearnPolygonOptions& o, const CLI::App& app) {
   learn::ParameterSet theta =
       learn::make_polygon_parameters(learn::perturb_polygon_model(truth, flags, o.perturb, o.seed), flags);
   const learn::ParameterSet initial = theta;
-  learn::PolygonObjective objective(data, ls);
+  learn::PolygonObjective objective(data, truth, ls);
   std::vector<Index> training, validation;
   learn::split_samples(objective.num_samples(), 0.2, o.seed, training, validation);
 

@@ -32,7 +32,7 @@ void BM_PolygonLoss(benchmark::State& state) {
   const ParameterSet theta = bench::polygon_start(0.25, 3);
   PolygonLossSettings ls;
   ls.method = method;
-  PolygonObjective objective(data, ls);
+  PolygonObjective objective(data, reference_polygon_model(), ls);
   std::vector<Index> all, none;
   split_samples(objective.num_samples(), 0.0, 1, all, none);
   evaluate_mean(objective, theta, all, threads);  // warm starts, as in training

@@ -22,8 +22,8 @@ TEST(PolygonRelaxedLoss, EverySampleSolvesAtTheTruthIncludingTheCyclingOnes) {
   const PolygonDataset data = generate_polygon_dataset(truth, ds);
   PolygonLossSettings ls;
   ls.method = PolygonMethod::relaxed;
-  ls.warm_start = false;
-  PolygonObjective objective(data, ls);
+  ls.relaxed_warm_center = false;
+  PolygonObjective objective(data, truth, ls);
   ASSERT_EQ(objective.num_samples(), 315);
   const ParameterSet theta = make_polygon_parameters(truth, PolygonLearnFlags{});
   objective.prepare(theta, 1);

@@ -30,7 +30,7 @@ TEST_P(LearnPolygonThreads, OneAndTwoThreadsAreBitwiseIdentical) {
   const ParameterSet start = make_polygon_parameters(perturb_polygon_model(truth, flags, 0.2, 5), flags);
   PolygonLossSettings ls;
   ls.method = GetParam();
-  PolygonObjective one(data, ls), two(data, ls);
+  PolygonObjective one(data, truth, ls), two(data, truth, ls);
   std::vector<Index> all, none;
   split_samples(one.num_samples(), 0.0, 1, all, none);
   for (int round = 0; round < 2; ++round) {  // cold, then warm-started
