@@ -9,7 +9,8 @@
 // coordinate, ground height and angle: the latter two through the half-plane's (ψ, offset)
 // of the scene map, polygon_gradient_from_scene) to a relative error of 1e-5 (hard: exact
 // Lemke), 1e-4 (relaxed, convex: the interior point's tolerance enters), measured against
-// max(|g|∞, 1e-3·|ℓ|).
+// max(|g|∞, 1e-3·|ℓ|). The convex loss's residuals r = v⁺ − v̄ and their Jacobian (for
+// Levenberg–Marquardt) give ‖r‖² = ℓ and 2Jᵀr = ∂ℓ/∂θ.
 // The hard loss has a zero μ-gradient where the contacts stick (a known limitation,
 // docs/formulations.md): |∂ℓ/∂μ| ≤ 1e-12 (roundoff), while the relaxed loss's is not zero there.
 #include <lcprelax/learn/polygon_objective.hpp>
@@ -126,6 +127,28 @@ TEST(LearnPolygonLossGradient, RelaxedMatchesCentralDifferences) {
   check_gradient(PolygonMethod::relaxed, 1e-4, 1.0);
 }
 TEST(LearnPolygonLossGradient, ConvexMatchesCentralDifferences) { check_gradient(PolygonMethod::convex, 1e-4); }
+
+TEST(LearnPolygonLossGradient, ConvexResidualsGiveTheLossAndItsGradient) {
+  // The convex loss is a sum of squares ℓ = ‖r‖², r = v⁺ − v̄ (SceneObjective's residuals,
+  // their Jacobian pulled back to the polygon's θ like the gradient): ‖r‖² = ℓ and
+  // 2 Jᵀ r = ∂ℓ/∂θ, the gradient checked against central differences above.
+  const PolygonModel m = quad_model();
+  PolygonTransition s = sample_near_ground(m, Vec3(0.8, -0.7, 1.3));
+  s.v_next = prediction(m, s) + Vec3(0.05, -0.03, 0.2);
+  const PolygonDataset data = one_sample(s);
+  PolygonObjective objective(data, m, settings(PolygonMethod::convex, 1.0));
+  ASSERT_TRUE(objective.residuals_unavailable().empty());
+  const ParameterSet theta = make_polygon_parameters(m, PolygonLearnFlags{});
+  const SampleResult r = loss(objective, theta);
+  const ResidualResult res = objective.evaluate_residuals(0, theta, 0);
+  ASSERT_TRUE(r.ok && res.ok) << r.message << res.message;
+  ASSERT_EQ(res.jacobian.cols(), theta.size());
+  EXPECT_NEAR(res.residual.squaredNorm(), r.loss, 1e-12 * (1 + r.loss));
+  const Vector g = 2.0 * res.jacobian.transpose() * res.residual;
+  EXPECT_LE((g - r.gradient).cwiseAbs().maxCoeff(), 1e-8 * r.gradient.cwiseAbs().maxCoeff());
+  PolygonObjective hard(data, m, settings(PolygonMethod::hard, 1.0));
+  EXPECT_FALSE(hard.residuals_unavailable().empty());
+}
 
 TEST(LearnPolygonLossGradient, HardGradientInMuVanishesWhenSticking) {
   // A slow tangential velocity with a large μ: the contacts stick, so the hard loss does
