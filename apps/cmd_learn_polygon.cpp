@@ -8,6 +8,9 @@
 //       [--learn mu,mass,inertia,vertices,ground] [--optimizer sgd|adam|lbfgs|lm] [--lr α]
 //       [--lr-decay d] [--log FILE.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE] [--resume FILE] [--json]
 //
+// The learning problem is the scene path's on a one-body scene (learn/polygon_objective.hpp,
+// learn/polygon_scene.hpp): same contacts, ContactSystem and step losses as `learn scene`.
+//
 // Ground truth: the quadrilateral with vertices (−0.30, −0.22), (0.34, −0.18), (0.26, 0.24),
 // (−0.22, 0.20) m recentred on its centroid, μ = 0.4, mass 1.5 kg, inertia 0.06 kg·m², on the
 // floor y ≥ 0 (h = 0, α = 0). Data: polygon_dataset.hpp (the --data-model contact model,
@@ -160,7 +163,7 @@ int run_learn_polygon(const LearnPolygonOptions& o, const CLI::App& app) {
   learn::ParameterSet theta =
       learn::make_polygon_parameters(learn::perturb_polygon_model(truth, flags, o.perturb, o.seed), flags);
   const learn::ParameterSet initial = theta;
-  learn::PolygonObjective objective(data, ls);
+  learn::PolygonObjective objective(data, truth, ls);
   std::vector<Index> training, validation;
   learn::split_samples(objective.num_samples(), 0.2, o.seed, training, validation);
 
@@ -217,7 +220,7 @@ Command add_learn_polygon_command(CLI::App& learn) {
       ->capture_default_str();
   app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
   app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground")->capture_default_str();
-  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
+  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; full batch only)")->capture_default_str();
   app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia, metres, radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");

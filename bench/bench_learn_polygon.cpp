@@ -1,8 +1,8 @@
 // Throughput of the polygon learning losses (learn/polygon_objective.hpp): samples per
-// second of forward + gradient (evaluate_mean over the whole dataset, warm starts from the
-// previous iteration as in training) for each method with 1 and 2 threads, and the cost
-// split per sample (assembly with tangents, solve, backward/chain rule; summed over
-// threads, so it is CPU time per sample, not wall time).
+// second of forward + gradient (evaluate_mean over the whole dataset; relaxed: proximal
+// centres from the previous iteration as in training) for each method with 1 and 2 threads,
+// and the cost split per sample (SceneObjectiveStats: contacts and island assembly, the step
+// loss, the pullback to θ; summed over threads, so it is CPU time per sample, not wall time).
 //
 //   build/bench/bench_learn_polygon [--benchmark_filter=relaxed]
 //
@@ -32,10 +32,10 @@ void BM_PolygonLoss(benchmark::State& state) {
   const ParameterSet theta = bench::polygon_start(0.25, 3);
   PolygonLossSettings ls;
   ls.method = method;
-  PolygonObjective objective(data, ls);
+  PolygonObjective objective(data, reference_polygon_model(), ls);
   std::vector<Index> all, none;
   split_samples(objective.num_samples(), 0.0, 1, all, none);
-  evaluate_mean(objective, theta, all, threads);  // warm starts, as in training
+  evaluate_mean(objective, theta, all, threads);  // proximal centres, as in training
   objective.reset_times();
   int failed = 0;
   for (auto _ : state) {

@@ -166,8 +166,8 @@ void BM_LearnPolygon(benchmark::State& state) {
   const ParameterSet theta = bench::polygon_start(0.25, 3);
   PolygonLossSettings ls;
   ls.method = static_cast<PolygonMethod>(state.range(0));
-  ls.qp.kkt_backend = backend_arg(state.range(1));
-  PolygonObjective objective(polygon_data(), ls);
+  ls.relaxed.qp.kkt_backend = ls.convex.qp.kkt_backend = backend_arg(state.range(1));
+  PolygonObjective objective(polygon_data(), reference_polygon_model(), ls);
   std::vector<Index> all, none;
   split_samples(objective.num_samples(), 0.0, 1, all, none);
   evaluate_mean(objective, theta, all, 1);  // warm starts, as in training
@@ -180,7 +180,7 @@ void BM_LearnPolygon(benchmark::State& state) {
   const double n = static_cast<double>(all.size()) * static_cast<double>(state.iterations());
   state.counters["samples_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
   state.counters["failed"] = failed;
-  state.SetLabel(std::string(to_string(ls.method)) + " " + to_string(ls.qp.kkt_backend));
+  state.SetLabel(std::string(to_string(ls.method)) + " " + to_string(ls.relaxed.qp.kkt_backend));
 }
 BENCHMARK(BM_LearnPolygon)
     ->ArgsProduct({{static_cast<int>(PolygonMethod::relaxed), static_cast<int>(PolygonMethod::convex)}, {0, 1}})

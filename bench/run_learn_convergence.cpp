@@ -83,7 +83,7 @@ Run polygon_run(learn::PolygonMethod method, const learn::PolygonDataset& data, 
   Run run{"polygon", learn::to_string(method), cli ? "perturbed (cli data)" : "perturbed", {}};
   learn::PolygonLossSettings ls;
   ls.method = method;
-  learn::PolygonObjective objective(data, ls);
+  learn::PolygonObjective objective(data, learn::reference_polygon_model(), ls);
   const learn::ParameterSet truth = bench::polygon_true_parameters();
   learn::ParameterSet theta = bench::polygon_start(0.25, cli ? 1 : 3);
   std::vector<Index> training, validation;

@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
         } else if (problem == "polygon") {
           learn::PolygonLossSettings ls;
           ls.method = learn::parse_polygon_method(method);
-          learn::PolygonObjective objective(polygon, ls);
+          learn::PolygonObjective objective(polygon, learn::reference_polygon_model(), ls);
           o.samples = objective.num_samples();
           o.m = time_passes(objective, polygon_theta, bench::all_samples(o.samples), threads, min_time);
         } else {

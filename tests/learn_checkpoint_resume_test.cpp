@@ -149,7 +149,7 @@ Problem polygon_problem(PolygonMethod method) {
   PolygonLossSettings ls;
   ls.method = method;
   Problem p;
-  p.objective = [data, ls] { return std::make_unique<PolygonObjective>(*data, ls); };
+  p.objective = [data, truth, ls] { return std::make_unique<PolygonObjective>(*data, truth, ls); };
   p.theta = make_polygon_parameters(perturb_polygon_model(truth, flags, 0.2, 5), flags);
   split_samples(static_cast<Index>(data->transitions.size()), 0.2, 1, p.training, p.validation);
   return p;

@@ -10,9 +10,10 @@
 //   option at its default (data, seed, perturbation, epochs, learning rate), learns: every
 //   learned parameter's relative error (polygon_relative_error) ends ≤ 5% and at most 1/5
 //   of its initial value (the --epochs 0 run's), the training loss falls 20-fold, no sample
-//   fails. Measured (seed 1, 400 samples, 300 epochs): μ 0.7%, mass 2.8%, inertia 1.3%,
-//   vertices ≤ 0.5% of the radius from 25% / 12.5%; loss 0.47 → 0.0042; ≈ 20 s on 2 busy
-//   cores. Before candidate_margin and the present defaults the same command ended with
+//   fails. Measured (seed 1, 400 samples, 300 epochs) on the scene path
+//   (polygon_objective.hpp): μ 0.6%, mass 2.5%, inertia 1.1%, vertices ≤ 0.5% of the radius
+//   from 25% / 12.5%; final loss 9.1e-4 (the former dense relaxed loss: μ 1.1%, mass 2.5%,
+//   inertia 0.9%, vertices ≤ 0.4%, loss 0.0051); ≈ 80 s on 2 busy cores. Before candidate_margin and the present defaults the same command ended with
 //   inertia 47% and vertex2.y 32% off (loss 0.54 → 0.45).
 #include "cli_support.hpp"
 

@@ -1,7 +1,7 @@
 // Polygon datasets (polygon_dataset.hpp) and parameters (polygon_params.hpp). Expected
 // behaviour:
 // - generation is deterministic for a seed; with contact_only every sample has a contact at
-//   the truth; noise σ changes every recorded component by about σ (sample std within 20%);
+//   the truth (by the simulator's rule, on the one-body scene of polygon_scene.hpp); noise σ changes every recorded component by about σ (sample std within 20%);
 // - a generated trajectory written as CSV loads back to the same transitions (bitwise) with
 //   the same Δt;
 // - bad trajectories are InputErrors naming the problem and the line: NaN, a missing
@@ -9,7 +9,7 @@
 // - the parameter layout round-trips θ ↔ model, --learn lists parse and reject unknown
 //   kinds, and learn flags set Parameter::learn.
 #include <lcprelax/contact/polygon.hpp>
-#include <lcprelax/learn/polygon_assembly.hpp>
+#include <lcprelax/learn/polygon_scene.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <gtest/gtest.h>
@@ -57,9 +57,12 @@ TEST(LearnPolygonDataset, GenerationIsDeterministicAndHasContacts) {
   const PolygonDataset a = generate_polygon_dataset(truth_model(), s), b = generate_polygon_dataset(truth_model(), s);
   ASSERT_GT(a.transitions.size(), 20u);
   ASSERT_EQ(a.transitions.size(), b.transitions.size());
+  const SceneDataset as_scene = polygon_scene_dataset(truth_model(), a);  // the one-body scene
+  ASSERT_EQ(as_scene.transitions.size(), a.transitions.size());
   for (std::size_t i = 0; i < a.transitions.size(); ++i) {
     EXPECT_EQ(a.transitions[i].v_next, b.transitions[i].v_next);
-    EXPECT_FALSE(polygon_active_vertices(truth_model(), a.transitions[i], a).empty());
+    EXPECT_EQ(as_scene.transitions[i].next_velocity[0], a.transitions[i].v_next);
+    EXPECT_TRUE(transition_has_contact(as_scene.scene, as_scene.transitions[i])) << i;  // the simulator's rule
   }
   s.noise = 0.01;
   const PolygonDataset n = generate_polygon_dataset(truth_model(), s);

@@ -8,7 +8,8 @@
 // hard loss is run for
 // comparison only at the truth: its mean loss there is ≤ 1e-20 (the generated data and the
 // per-sample model agree exactly). Relaxed weights: the polygon defaults a1 = 1, a2 = 0.1,
-// ε = 1e-6 (polygon_losses.hpp explains why a2 < 1 here).
+// ε = 1e-6 (the scene path's lifted relaxed loss with proximal centres, step_loss_relaxed.hpp;
+// polygon_objective.hpp).
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_objective.hpp>
 
@@ -36,7 +37,7 @@ Outcome run(PolygonMethod method, int epochs, double lr) {
   ParameterSet theta = make_polygon_parameters(perturb_polygon_model(truth, flags, 0.25, 3), flags);
   PolygonLossSettings ls;
   ls.method = method;
-  PolygonObjective objective(data, ls);
+  PolygonObjective objective(data, truth, ls);
   std::vector<Index> training, validation;
   split_samples(objective.num_samples(), 0.0, 1, training, validation);
   TrainSettings ts;

@@ -1,7 +1,8 @@
 // 1 vs 2 threads for the polygon objective (polygon_objective.hpp). Expected behaviour: for
 // every method (hard, relaxed, convex), the mean loss and gradient over all samples are
 // bitwise identical (memcmp) with 1 and 2 threads, on a cold first evaluation, on a second
-// evaluation that uses the per-sample warm starts, and after 3 training epochs (θ compared).
+// evaluation that uses the per-transition proximal centres (relaxed; scene_objective.hpp),
+// and after 3 training epochs (θ compared).
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_objective.hpp>
 
@@ -30,10 +31,10 @@ TEST_P(LearnPolygonThreads, OneAndTwoThreadsAreBitwiseIdentical) {
   const ParameterSet start = make_polygon_parameters(perturb_polygon_model(truth, flags, 0.2, 5), flags);
   PolygonLossSettings ls;
   ls.method = GetParam();
-  PolygonObjective one(data, ls), two(data, ls);
+  PolygonObjective one(data, truth, ls), two(data, truth, ls);
   std::vector<Index> all, none;
   split_samples(one.num_samples(), 0.0, 1, all, none);
-  for (int round = 0; round < 2; ++round) {  // cold, then warm-started
+  for (int round = 0; round < 2; ++round) {  // cold, then from the stored centres
     const BatchResult r1 = evaluate_mean(one, start, all, 1);
     const BatchResult r2 = evaluate_mean(two, start, all, 2);
     EXPECT_EQ(r1.failed, r2.failed);

@@ -1,7 +1,6 @@
 // The dual-form relaxed loss of one island (learn/step_loss_relaxed_dual.hpp):
-// (1) on a polygon on the ground (one body, one or two contacts) the loss and ∂ℓ/∂θ equal
-//     polygon_relaxed_loss's to 1e-10 relative (energy scaling; the polygon is an instance
-//     of the scene path);
+// (The former check (1) against the polygon's own dense relaxed loss went with that loss:
+// the polygon now uses the scene path's lifted relaxed loss, polygon_objective.hpp.)
 // (2) central differences of ℓ against every entry of the cotangent (Jn, Jt on their
 //     patterns, φ, μ, M⁻¹, v*), both scalings, on a box and two stacked boxes (every entry)
 //     and on an 80-contact island of a 20-body learning pile (every 24th entry of each
@@ -11,8 +10,6 @@
 //     scalings against the lifted relaxed_step_loss on the same islands, also at μ ± 25%,
 //     with the shift δ chosen (printed).
 #include <lcprelax/core/errors.hpp>
-#include <lcprelax/learn/polygon_losses.hpp>
-#include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/learn/scene_dataset.hpp>
 #include <lcprelax/learn/step_loss_relaxed.hpp>
 #include <lcprelax/learn/step_loss_relaxed_dual.hpp>
@@ -20,7 +17,6 @@
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
 
-#include "learn_polygon_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -165,74 +161,6 @@ void check_gradient(ContactSystem s, const Vector& target, const char* name,
   EXPECT_LE(kinks, entries / 20) << name;
   std::printf("%s (%s): %d entries, worst relative error %.2e, %d on kinks, shift %.1e, loss %.6e\n", name, to_string(scaling), entries, worst,
               kinks, ws.last().shift, r.loss);
-}
-
-// (1) A polygon sample (tests/learn_polygon_loss_gradient_test.cpp's quadrilateral on a
-// tilted raised ground, two contacts) as a one-body island.
-PolygonTransition sample_near_ground(const PolygonModel& m, const Vec3& v) {
-  PolygonTransition s;
-  const HalfPlane g = ground_half_plane(m.ground_height, m.ground_angle);
-  const double theta = m.ground_angle + 0.004;
-  s.q = Vec3(0.1, 0.0, theta);
-  const Vec2 b = m.shape.vertices[1];
-  const double c = std::cos(theta), sn = std::sin(theta);
-  const Vec2 rb(c * b.x() - sn * b.y(), sn * b.x() + c * b.y());
-  s.q.y() = (g.offset - 0.001 - g.normal.x() * (s.q.x() + rb.x())) / g.normal.y() - rb.y();
-  s.v = v;
-  s.u = Vec3(2.0, -3.0, 0.15);
-  return s;
-}
-
-double inner(const ContactSystemCotangent& g, const PolygonContactData& t) {
-  double sum = g.phi.dot(t.phi) + g.mu.dot(t.mu) + g.minv.dot(t.minv) + g.v_star.dot(t.v_star);
-  sum += pattern_inner(g.Jn, t.Jn) + pattern_inner(g.Jt, t.Jt);
-  return sum;
-}
-
-TEST(StepLossRelaxedDual, EqualsPolygonRelaxedLoss) {
-  const PolygonModel model = test::quad_model();
-  PolygonDataset dataset;
-  dataset.dt = kDt;
-  dataset.margin = 0.01;
-  // Sliding and spinning; slow (nearly sticking); a target far off.
-  const Vec3 velocities[] = {Vec3(0.8, -0.7, 1.3), Vec3(0.02, -0.05, 0.01), Vec3(-0.4, -0.2, -0.6)};
-  const Vec3 offsets[] = {Vec3(0.05, -0.03, 0.2), Vec3(0.01, 0.0, -0.02), Vec3(-0.3, 0.4, 1.0)};
-  for (int k = 0; k < 3; ++k) {
-    const PolygonTransition sample = sample_near_ground(model, velocities[k]);
-    const std::vector<int> active = polygon_active_vertices(model, sample, dataset);
-    ASSERT_GE(active.size(), 1u);
-    PolygonAssembly a;
-    assemble_polygon(model, active, sample, dataset, a);
-    const ContactSystem s = to_contact_system(a.value);
-    ASSERT_EQ(s.Jn.nonZeros(), 3 * s.num_contacts());  // full rows: every tangent entry has a slot
-    ASSERT_EQ(s.Jt.nonZeros(), 3 * s.num_contacts());
-    const Vector target = lcp_prediction(s) + Vector(offsets[k]);
-    PolygonLossSettings ps;
-    ps.qp.eps_abs = 1e-12;
-    ps.warm_start = true;  // a fresh PolygonWarmStart: no warm start is used; it records the result
-    RelaxedLcpSolver solver(ps.relaxed, ps.qp);
-    PolygonWarmStart warm;
-    PolygonLossTimes times;
-    const SampleResult pr = polygon_relaxed_loss(a, Vec3(target), kDt, ps, solver, warm, times);
-    ASSERT_TRUE(pr.ok) << pr.message;
-    RelaxedDualStepLossSettings st;
-    st.qp = ps.qp;
-    RelaxedDualStepLossWorkspace ws(st);
-    const StepLossResult r = ws.evaluate(s, target, kDt);
-    ASSERT_EQ(r.status, ContactStatus::solved) << r.message;
-    const double loss_err = std::abs(r.loss - pr.loss) / std::abs(pr.loss);
-    double grad_err = 0.0;
-    const double gscale = pr.gradient.cwiseAbs().maxCoeff();
-    for (std::size_t p = 0; p < a.tangent.size(); ++p) {
-      const double g = inner(r.grad, a.tangent[p]);
-      grad_err = std::max(grad_err, std::abs(g - pr.gradient(static_cast<Index>(p))) / gscale);
-    }
-    std::printf("polygon sample %d: loss %.12e (polygon %.12e), relative difference %.2e; max |Δ∂ℓ/∂θ| / "
-                "max|∂ℓ/∂θ| = %.2e over %zu parameters; shift %.1e (polygon %.1e)\n",
-                k, r.loss, pr.loss, loss_err, grad_err, a.tangent.size(), ws.last().shift, warm.relaxed.shift);
-    EXPECT_LE(loss_err, 1e-10);
-    EXPECT_LE(grad_err, 1e-10);
-  }
 }
 
 // (2) Central differences.

@@ -2,10 +2,9 @@
 // finite differences of ℓ against every entry of the envelope-theorem cotangent and along
 // random directions (box on the ground, two stacked boxes, an island of a settled 20-body
 // pile), the same directional derivatives by the QP adjoint (QpSolver::backward), the
-// workspace's update path, the polygon relaxed loss on one-body islands, and statuses.
+// workspace's update path, and statuses.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
-#include <lcprelax/learn/polygon_losses.hpp>
 #include <lcprelax/learn/step_loss_relaxed.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
@@ -279,41 +278,6 @@ TEST(StepLossRelaxed, WorkspaceUpdateMatchesFreshSetup) {
   ASSERT_EQ(ws.shifts().size(), s.num_friction());
   const double S = 1.0 / s.minv(0);  // contact 0 is the bottom box's, on the ground
   EXPECT_NEAR(ws.shifts()(0), 0.1 * 0.4 * S, 1e-12 * S);
-}
-
-// One body on the ground: the lifted QP against polygon_relaxed_loss (the dense z-space QP).
-TEST(StepLossRelaxed, MatchesPolygonRelaxedLossWithoutFriction) {
-  for (double mu : {0.0, 0.5}) {
-    ContactSystem s = box_stack(1, 0.5);
-    s.v_star << 0.6, -0.3, 0.2;
-    s.phi << 0.002, 0.001;
-    s.mu.setConstant(mu);
-    const Vector target = noisy_target(s, 6, 0.1);
-    PolygonAssembly a;
-    a.vertices = {0, 1};
-    a.value.Jn = DenseMatrix(s.Jn);
-    a.value.Jt = DenseMatrix(s.Jt);
-    a.value.phi = s.phi;
-    a.value.mu = s.mu;
-    a.value.minv = s.minv;
-    a.value.v_star = s.v_star;
-    PolygonLossSettings ps;
-    ps.qp.eps_abs = 1e-12;
-    RelaxedLcpSolver solver(ps.relaxed, ps.qp);
-    PolygonWarmStart warm;
-    PolygonLossTimes times;
-    const SampleResult pr = polygon_relaxed_loss(a, Vec3(target), kDt, ps, solver, warm, times);
-    ASSERT_TRUE(pr.ok) << pr.message;
-    RelaxedStepLossWorkspace ws(tight());
-    const StepLossResult r = ws.evaluate(s, target, kDt);
-    ASSERT_EQ(r.status, ContactStatus::solved);
-    std::cout << "mu " << mu << ": polygon relaxed " << pr.loss << ", lifted step loss " << r.loss
-              << ", relative difference " << std::abs(pr.loss - r.loss) / pr.loss << " (polygon shift "
-              << warm.relaxed.shift << ", per-contact shifts " << ws.shifts().transpose() << ")\n";
-    if (mu == 0.0) {
-      EXPECT_NEAR(r.loss, pr.loss, 1e-8 * pr.loss);
-    }
-  }
 }
 
 TEST(StepLossRelaxed, FailedSolveIsReported) {

@@ -2,6 +2,7 @@
 #include "random_draws.hpp"
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/learn/polygon_dataset.hpp>
+#include <lcprelax/learn/polygon_scene.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
 
@@ -52,10 +53,8 @@ PolygonDataset generate_polygon_dataset(const PolygonModel& truth, const Polygon
   const double mg = truth.mass * settings.gravity.norm();
 
   for (int traj = 0; traj < settings.trajectories; ++traj) {
-    RigidBody body;
-    body.shape = truth.shape;
-    body.mass = truth.mass;
-    body.inertia = truth.inertia;
+    Scene scene = polygon_scene(truth, settings.dt, settings.gravity, settings.margin);
+    RigidBody& body = scene.world.bodies[0];
     const double angle = uniform(rng, -kPi, kPi);
     // Place the lowest vertex (along the ground normal) drop_height·[0.5, 1] above the
     // ground, at a random position along the ground line within ±radius of (0, h).
@@ -70,13 +69,6 @@ PolygonDataset generate_polygon_dataset(const PolygonModel& truth, const Polygon
     body.velocity = Vec3(uniform(rng, -settings.throw_speed, settings.throw_speed),
                          uniform(rng, -0.5 * settings.throw_speed, 0.5 * settings.throw_speed),
                          uniform(rng, -settings.spin, settings.spin));
-    Scene scene;
-    scene.world.bodies.push_back(body);
-    scene.world.half_planes.push_back(ground);
-    scene.world.gravity = settings.gravity;
-    scene.world.friction.default_mu = truth.mu;
-    scene.settings.dt = settings.dt;
-    scene.settings.margin = settings.margin;
     scene.settings.model = settings.model;
     scene.steps = settings.steps;
     SimulatorSettings sim_settings;

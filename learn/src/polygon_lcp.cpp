@@ -1,14 +1,12 @@
-// The Stewart–Trinkle LCP of a polygon sample and its tangent (polygon_lcp.hpp).
+// The dense Stewart–Trinkle LCP of one polygon (polygon_lcp.hpp).
 #include <lcprelax/learn/polygon_lcp.hpp>
 
 namespace lcprelax::learn {
 namespace {
 
-// Fills M, q, P, p from W (and its pieces) given J-space data; shared by value and tangent:
-// the map (W, μ, q-blocks, P-blocks) → (M, q, P, p) is linear except for the constant
-// identity blocks, which `with_identity` switches off for the tangent.
+// Fills M, q, P, p from W (and its pieces) given J-space data.
 void fill(Index nc, const DenseMatrix& W, const Vector& mu, const Vector& qn, const Vector& qt, const DenseMatrix& Pn,
-          const DenseMatrix& Pt, const Vector& p, bool with_identity, PolygonLcp& out) {
+          const DenseMatrix& Pt, const Vector& p, PolygonLcp& out) {
   const Index n = 4 * nc;
   out.M.setZero(n, n);
   const DenseMatrix Wnn = W.topLeftCorner(nc, nc), Wnt = W.topRightCorner(nc, nc);
@@ -23,13 +21,11 @@ void fill(Index nc, const DenseMatrix& W, const Vector& mu, const Vector& qn, co
   out.M.block(2 * nc, nc, nc, nc) = -Wtt;
   out.M.block(2 * nc, 2 * nc, nc, nc) = Wtt;
   out.M.block(3 * nc, 0, nc, nc) = mu.asDiagonal();
-  if (with_identity) {
-    const DenseMatrix I = DenseMatrix::Identity(nc, nc);
-    out.M.block(nc, 3 * nc, nc, nc) = I;
-    out.M.block(2 * nc, 3 * nc, nc, nc) = I;
-    out.M.block(3 * nc, nc, nc, nc) = -I;
-    out.M.block(3 * nc, 2 * nc, nc, nc) = -I;
-  }
+  const DenseMatrix I = DenseMatrix::Identity(nc, nc);
+  out.M.block(nc, 3 * nc, nc, nc) = I;
+  out.M.block(2 * nc, 3 * nc, nc, nc) = I;
+  out.M.block(3 * nc, nc, nc, nc) = -I;
+  out.M.block(3 * nc, 2 * nc, nc, nc) = -I;
   out.q.setZero(n);
   out.q.head(nc) = qn;
   out.q.segment(nc, nc) = qt;
@@ -49,28 +45,22 @@ DenseMatrix stack(const DenseMatrix& Jn, const DenseMatrix& Jt) {
 
 }  // namespace
 
+void PolygonContactData::set_zero(Index nc) {
+  Jn.setZero(nc, 3);
+  Jt.setZero(nc, 3);
+  phi.setZero(nc);
+  mu.setZero(nc);
+  minv.setZero(3);
+  v_star.setZero(3);
+}
+
 void polygon_lcp(const PolygonContactData& d, double dt, PolygonLcp& out) {
   const Index nc = d.num_contacts();
   const DenseMatrix J = stack(d.Jn, d.Jt);
   const DenseMatrix W = J * d.minv.asDiagonal() * J.transpose();
   const Vector qn = d.Jn * d.v_star + d.phi.cwiseMax(0.0) / dt;
   fill(nc, W, d.mu, qn, d.Jt * d.v_star, d.minv.asDiagonal() * d.Jn.transpose(),
-       d.minv.asDiagonal() * d.Jt.transpose(), d.v_star, true, out);
-}
-
-void polygon_lcp_tangent(const PolygonContactData& d, const PolygonContactData& dd, double dt, PolygonLcp& out) {
-  const Index nc = d.num_contacts();
-  const DenseMatrix J = stack(d.Jn, d.Jt), dJ = stack(dd.Jn, dd.Jt);
-  const DenseMatrix JD = J * d.minv.asDiagonal();
-  const DenseMatrix dW = dJ * d.minv.asDiagonal() * J.transpose() + J * dd.minv.asDiagonal() * J.transpose() +
-                         JD * dJ.transpose();
-  Vector dgap(nc);
-  for (Index k = 0; k < nc; ++k) dgap(k) = d.phi(k) > 0 ? dd.phi(k) / dt : 0.0;
-  const Vector dqn = dd.Jn * d.v_star + d.Jn * dd.v_star + dgap;
-  const Vector dqt = dd.Jt * d.v_star + d.Jt * dd.v_star;
-  const DenseMatrix dPn = dd.minv.asDiagonal() * d.Jn.transpose() + d.minv.asDiagonal() * dd.Jn.transpose();
-  const DenseMatrix dPt = dd.minv.asDiagonal() * d.Jt.transpose() + d.minv.asDiagonal() * dd.Jt.transpose();
-  fill(nc, dW, dd.mu, dqn, dqt, dPn, dPt, dd.v_star, false, out);
+       d.minv.asDiagonal() * d.Jt.transpose(), d.v_star, out);
 }
 
 SparseMatrix full_pattern(const DenseMatrix& A) {
@@ -82,13 +72,6 @@ SparseMatrix full_pattern(const DenseMatrix& A) {
   S.setFromTriplets(t.begin(), t.end());
   S.makeCompressed();
   return S;
-}
-
-double pattern_inner(const SparseMatrix& G, const DenseMatrix& T) {
-  double sum = 0.0;
-  for (Index j = 0; j < G.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(G, j); it; ++it) sum += it.value() * T(it.row(), j);
-  return sum;
 }
 
 }  // namespace lcprelax::learn

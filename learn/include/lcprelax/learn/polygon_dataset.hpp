@@ -4,7 +4,8 @@
 // polygon_params.hpp) and v = (vx, vy, ω) (m/s, rad/s), u = (fx, fy, τ) the applied
 // generalized force during the step (N, N, N·m), gravity acting in addition.
 //
-// Generated data: the library's Simulator (models/simulator.hpp, contact model `lcp`
+// Generated data: the library's Simulator on the one-body scene polygon_scene(truth, ...)
+// (polygon_scene.hpp; models/simulator.hpp, contact model `lcp`
 // = Stewart & Trinkle 1996 by Lemke, or `convex`) integrates the ground-truth model from
 // seeded random throws: the lowest vertex starts drop_height·[0.5, 1] above the ground,
 // pose angle uniform in [−π, π), velocity uniform in ±throw_speed (vx) and

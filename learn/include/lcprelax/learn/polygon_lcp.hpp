@@ -1,7 +1,8 @@
 #pragma once
-// The Stewart–Trinkle velocity-level LCP of one polygon sample, the linear map from its
-// unknowns to the predicted next velocity, and their derivatives with respect to θ
-// (forward mode: the tangent for one parameter from the assembly's tangent).
+// The Stewart–Trinkle velocity-level LCP of one polygon on a static shape, written densely,
+// and the linear map from its unknowns to the predicted next velocity: the closed-form
+// stick/slip analysis of learn/stick_slip_fragility.hpp works on it. (Learning on a polygon
+// does not use it: learn polygon is the scene path on a one-body scene, polygon_objective.hpp.)
 //
 // Stewart & Trinkle, "An implicit time-stepping scheme for rigid body dynamics with
 // inelastic collisions and Coulomb friction", IJNME 39, 1996; Anitescu & Potra, "Formulating
@@ -15,12 +16,24 @@
 //         [−Wtn −Wtt  Wtt  I ]          [−Jt v*               ]
 //         [ diag(μ) −I −I  0 ]          [ 0                   ]
 // Prediction: v⁺ = P z + p with P = M⁻¹ [Jnᵀ  Jtᵀ  −Jtᵀ  0] (3×n) and p = v*.
-// Tangents: dW = dJ M⁻¹ Jᵀ + J dM⁻¹ Jᵀ + J M⁻¹ dJᵀ; the gap term's derivative is dφ/Δt where
-// φ > 0 and 0 where φ < 0 (a kink at φ = 0; gradient checks stay away from it).
-#include <lcprelax/learn/polygon_assembly.hpp>
 #include <lcprelax/sparse/types.hpp>
 
 namespace lcprelax::learn {
+
+/// Dense contact data of one body (3 dofs: vx, vy, ω) with nc contacts, one friction row
+/// each. Units: Jn, Jt rows (1, 1, m); φ m; M⁻¹ (1/kg, 1/kg, 1/(kg·m²)); v* (m/s, m/s, rad/s).
+struct PolygonContactData {
+  DenseMatrix Jn;   ///< nc×3
+  DenseMatrix Jt;   ///< nc×3
+  Vector phi;       ///< nc
+  Vector mu;        ///< nc
+  Vector minv;      ///< 3
+  Vector v_star;    ///< 3
+
+  Index num_contacts() const { return static_cast<Index>(phi.size()); }
+  /// Sets every entry to zero with the sizes of a problem of nc contacts.
+  void set_zero(Index nc);
+};
 
 struct PolygonLcp {
   DenseMatrix M;  ///< n×n
@@ -32,15 +45,9 @@ struct PolygonLcp {
 /// The LCP and prediction map of the data (value).
 void polygon_lcp(const PolygonContactData& d, double dt, PolygonLcp& out);
 
-/// Their derivative along the tangent dd of the data (d the value at which it is taken).
-void polygon_lcp_tangent(const PolygonContactData& d, const PolygonContactData& dd, double dt, PolygonLcp& out);
-
 /// A sparse copy of a dense matrix that STORES EVERY ENTRY (zeros included), so that
 /// gradients "on the input's sparsity pattern" (Lemke, QP, relaxed backward) cover all
 /// entries.
 SparseMatrix full_pattern(const DenseMatrix& A);
-
-/// Σ over the stored entries (i, j) of G of G_ij · T_ij.
-double pattern_inner(const SparseMatrix& G, const DenseMatrix& T);
 
 }  // namespace lcprelax::learn

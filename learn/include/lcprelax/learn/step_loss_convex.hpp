@@ -7,7 +7,7 @@
 //
 // Model: the two-phase convex model of models/contact_step.hpp (solve_convex_model) with an
 // L2 deviation penalty of weight w ≥ 0 in phase 2's objective (and in phase 1's too with
-// phase1_deviation, as the polygon convex loss, polygon_losses.hpp): (w/2)‖v⁺(λ) − v̄‖²_M
+// phase1_deviation, the seeds' formulation): (w/2)‖v⁺(λ) − v̄‖²_M
 // with v⁺ = v* + DJᵀλ adds (w/2)λᵀWλ + wλᵀJ(v* − v̄) (+ const), W = J D Jᵀ. With
 // c = (1 + w)v* − w v̄ and bn = Jn v* + max(φ, 0)/Δt (phase 1: w₁ = w with
 // phase1_deviation, else 0, in place of w):

@@ -11,7 +11,7 @@
 // with λt = β⁺ − β⁻ (the β±γ products cancel) and Jnᵀλn + Jtᵀλt = M Δv, is
 //     zᵀw = (Jnᵀλn + Jtᵀλt)ᵀv⁺ + λnᵀφ⁺/Δt + Σ_f μ_f γ_f λn(f)
 //         = ΔvᵀMΔv + (MΔv)ᵀv* + λnᵀφ⁺/Δt + γᵀdiag(μ)λn(f).
-// Unknowns in velocity units (as the polygon loss, polygon_losses.hpp): λn = S λ̃n, β± = S β̃±
+// Unknowns in velocity units (as step_loss_relaxed_dual.hpp): λn = S λ̃n, β± = S β̃±
 // per contact, S_c = 1/Σ_b minv_b,x the translational reduced mass of contact c's dynamic
 // bodies (kg; m for one body on a static shape, so that a one-body island matches the
 // polygon's S = m), γ in m/s unscaled, Δv unscaled and not regularized. The QP is
@@ -25,9 +25,9 @@
 // shift diag(t b_f, b_f/t): the block becomes εI + b_f [[t, 1], [1, 1/t]] ⪰ εI, i.e. the
 // bilinear term is completed to the square (b_f/2)(√t λ̃n + γ/√t)². The shift b_f depends on
 // the data and is differentiated (part of the objective). t = shift_balance (default 1);
-// the shifts are reported by RelaxedStepLossWorkspace::shifts(). It is larger than the
-// polygon's global shift δ ≈ (a2 μ m)²/H_nn, so on a one-body island with friction the two
-// losses differ (without friction, μ = 0, they are the same QP; tests/learn_step_loss_relaxed_test).
+// the shifts are reported by RelaxedStepLossWorkspace::shifts(). It is larger than the dual
+// form's global shift δ ≈ (a2 μ m)²/H_nn (step_loss_relaxed_dual.hpp), so on a one-body
+// island with friction the two losses differ (without friction, μ = 0, they are the same QP).
 // Hessian: Δv: 2(a1 I + a2 M); λ̃n: ε + t b; β̃±: ε; γ: ε + b/t; (λ̃n, γ): a2 μ S.
 //
 // The shift biases ℓ (at the true parameters it adds (b_f/2)(t λ̃n² + γ²/t) > 0 per row and

@@ -1,8 +1,8 @@
 #pragma once
 // The relaxed loss of one island of one contact step in the DUAL form (the impulses z as
-// the QP's only unknowns, the Delassus matrix W = J M⁻¹ Jᵀ formed): the polygon's relaxed
-// loss (polygon_losses.hpp, "relaxed") generalized to any island, so that a polygon on the
-// ground is one instance of the scene path. Parmar, Halm & Posa, "Fundamental Challenges
+// the QP's only unknowns, the Delassus matrix W = J M⁻¹ Jᵀ formed): the former dense relaxed
+// loss of `learn polygon` generalized to any island (learn polygon now uses the scene path's
+// lifted relaxed loss, step_loss_relaxed.hpp, through polygon_objective.hpp). Parmar, Halm & Posa, "Fundamental Challenges
 // in Deep Learning for Stiff Contact Dynamics", IROS 2021; learn/relaxed_lcp.hpp.
 //
 // Data: the island's ContactSystem s (models/contact_system.hpp), the observed next
@@ -23,8 +23,8 @@
 // Why: an impulse λ at contact c changes the bodies' relative translational velocity by
 // λ Σ_b 1/m_b = λ/S_c, so λ̃ = λ/S_c is that velocity change (m/s) whatever the masses, and
 // ε‖z̃‖² weighs contacts between light and heavy bodies alike without pulling masses to 0.
-// For one body on a static shape S_c = m: exactly the polygon's S, and on such an island
-// this loss and its gradient equal polygon_relaxed_loss (tests/learn_step_loss_relaxed_dual_test).
+// For one body on a static shape S_c = m: exactly the former polygon loss's S (on such
+// islands the two agreed to 1e-10 relative in ℓ and ∂ℓ/∂θ until that loss was removed).
 // S depends on the masses and is differentiated: ∂S_c/∂minv(3b) = −S_c² for b in c.
 // Rows (RelaxedDualScaling): `energy` (default, the polygon's) scales the rows by S as
 // well, Ms = S M S, so the complementarity term is zᵀ(Mz + q) in N·s·m/s = kg·(m/s)²: against

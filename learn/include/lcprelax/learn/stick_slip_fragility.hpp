@@ -31,7 +31,7 @@
 // other thresholds are the first root of s(ε) along the stick solution's linear path (a
 // q_normal root where λn reaches 0 as well is a lift-off without sliding: none).
 #include <lcprelax/lcp/lcp_types.hpp>
-#include <lcprelax/learn/polygon_assembly.hpp>
+#include <lcprelax/learn/polygon_lcp.hpp>
 #include <lcprelax/models/block1d.hpp>
 #include <lcprelax/sparse/types.hpp>
 
