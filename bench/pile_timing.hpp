@@ -116,6 +116,9 @@ struct WindowStats {
   long failed_islands = 0;
   double max_penetration = 0.0;  ///< m
   double final_speed = 0.0;      ///< max_body_speed after the window (m/s)
+  /// Convex model: phase solvers updated in place / all phase solvers prepared (the share of
+  /// symbolic analyses saved by SimulatorSettings::reuse_convex_solvers); 0 without.
+  double solver_reuse = 0.0;
   std::string first_failure;
 };
 
@@ -126,6 +129,7 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
   for (int k = 0; k < warmup; ++k) sim.step();
   WindowStats w;
   double total = 0.0, cpu = 0.0, contacts = 0.0, work = 0.0, collision = 0.0, solve = 0.0;
+  long updates = 0, prepared = 0;
   for (int k = 0; k < steps; ++k) {
     const double t0 = now_seconds(), c0 = cpu_seconds();
     const StepStats st = sim.step();
@@ -136,6 +140,8 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
     work += static_cast<double>(st.work);
     collision += st.collision_seconds;
     solve += st.solve_seconds;
+    updates += st.solver_updates;
+    prepared += st.solver_updates + st.solver_setups;
     w.contacts_max = std::max(w.contacts_max, st.contacts);
     w.islands_max = std::max(w.islands_max, st.islands);
     w.unknowns_max = std::max(w.unknowns_max, st.largest_island_unknowns);
@@ -153,6 +159,7 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
   w.work_mean = w.steps > 0 ? work / w.steps : 0.0;
   w.collision_mean = w.steps > 0 ? collision / w.steps : 0.0;
   w.solve_mean = w.steps > 0 ? solve / w.steps : 0.0;
+  w.solver_reuse = prepared > 0 ? static_cast<double>(updates) / static_cast<double>(prepared) : 0.0;
   w.final_speed = max_body_speed(sim.world());
   return w;
 }

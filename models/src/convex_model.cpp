@@ -4,9 +4,11 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/convex_solver_cache.hpp>
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace lcprelax {
 namespace {
@@ -19,11 +21,27 @@ namespace {
 // leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
 constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
 
+// Sets `qp` up for `p`, or updates it in place when its last problem had p's pattern.
+void prepare(QpSolver& qp, const QpProblem& p, ConvexSolverCache& cache) {
+  if (qp.can_update(p)) {
+    qp.update(p);
+    ++cache.updates;
+  } else {
+    qp.setup(p);
+    ++cache.setups;
+  }
+}
 
 }  // namespace
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening) {
+  return solve_convex_model(s, dt, settings, rho, formulation, softening, nullptr);
+}
+
+ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
+                                   ConvexFormulation formulation, const NormalSofteningSettings& softening,
+                                   ConvexSolverCache* cache) {
   if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
   const Index nc = s.num_contacts(), nf = s.num_friction();
   ContactSolution out;
@@ -49,8 +67,11 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
 
   // Phase 1: frictionless normal impulses.
   const detail::ConvexPhaseQp p1 = detail::convex_phase1_qp(data, soft1);
-  QpSolver qp1(settings);
-  qp1.setup(p1.problem);
+  std::optional<ConvexSolverCache> fresh;
+  if (!cache) fresh.emplace(settings);
+  ConvexSolverCache& c = cache ? *cache : *fresh;
+  QpSolver& qp1 = c.phase1;
+  prepare(qp1, p1.problem, c);
   const QpResult& r1 = qp1.solve();
   out.work = r1.info.iterations;
   if (!has_solution(r1.info.status)) {
@@ -66,33 +87,33 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
 
   // Phase 2: friction, bounded by κ, with the normal softening term on λn.
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
-  QpResult r2;
-  QpSolver qp2(settings);
+  const QpResult* r2 = nullptr;
+  QpSolver& qp2 = c.phase2;
   for (double slack : kKappaSlack) {
     p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
     if (slack == kKappaSlack[0])
-      qp2.setup(p2.problem);
+      prepare(qp2, p2.problem, c);
     else
       qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
-    r2 = qp2.solve();
-    out.work += r2.info.iterations;
-    if (has_solution(r2.info.status)) break;
+    r2 = &qp2.solve();
+    out.work += r2->info.iterations;
+    if (has_solution(r2->info.status)) break;
   }
-  out.residual = std::max(r2.info.primal_residual, r2.info.dual_residual);
-  if (!has_solution(r2.info.status)) {
+  out.residual = std::max(r2->info.primal_residual, r2->info.dual_residual);
+  if (!has_solution(r2->info.status)) {
     // Not solved; phase 1's frictionless answer is returned with it (contact_step.hpp).
     out.status = ContactStatus::failed;
-    out.message = std::string("phase 2: ") + to_string(r2.info.status) + ": " + r2.info.message;
+    out.message = std::string("phase 2: ") + to_string(r2->info.status) + ": " + r2->info.message;
     out.lambda_n = lambda1;
     out.lambda_t = Vector::Zero(nf);
     out.v_next = s.v_star + s.minv.cwiseProduct(s.Jn.transpose() * out.lambda_n);
     return out;
   }
-  const bool exact = r1.info.status == QpStatus::solved && r2.info.status == QpStatus::solved;
+  const bool exact = r1.info.status == QpStatus::solved && r2->info.status == QpStatus::solved;
   out.status = exact ? ContactStatus::solved : ContactStatus::solved_inaccurate;
   if (!exact) out.message = "a phase stalled within 1e3·eps (solved_inaccurate)";
-  out.lambda_n = r2.x.segment(p2.lambda_offset, nc).cwiseMax(0.0);
-  out.lambda_t = r2.x.segment(p2.lambda_offset + nc, nf);
+  out.lambda_n = r2->x.segment(p2.lambda_offset, nc).cwiseMax(0.0);
+  out.lambda_t = r2->x.segment(p2.lambda_offset + nc, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;
   out.v_next = s.v_star + s.minv.cwiseProduct(impulse);
   return out;

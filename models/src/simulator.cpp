@@ -5,6 +5,7 @@
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -239,6 +240,17 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   std::vector<IslandWork> work(islands.size());
   const bool lcp = settings_.model == ContactModel::lcp;
   const int n_islands = static_cast<int>(islands.size());
+  // Convex model: each island's cached phase solvers (convex_solver_cache.hpp), matched by
+  // the island's smallest body; caches of islands that are gone are dropped below.
+  std::vector<ConvexSolverCache*> caches(islands.size(), nullptr);
+  std::vector<long> setups0(islands.size(), 0), updates0(islands.size(), 0);
+  if (!lcp && settings_.reuse_convex_solvers) {
+    for (int i = 0; i < n_islands; ++i) {
+      caches[i] = &convex_caches_.try_emplace(islands[i].bodies.front(), settings_.qp).first->second;
+      setups0[i] = caches[i]->setups;
+      updates0[i] = caches[i]->updates;
+    }
+  }
 #ifdef LCPRELAX_HAS_OPENMP
   const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
@@ -276,7 +288,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm);
       } else {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
-                                         settings_.convex_softening);
+                                         settings_.convex_softening, caches[i]);
       }
       // A fallback's answer is used, but the island still counts as failed.
       if (!has_solution(wk.solution.status) && lcp && !redundant_island(s)) {  // fallback: the convex model
@@ -345,6 +357,19 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     }
   }
   warm_.swap(next_warm);
+  if (!lcp && settings_.reuse_convex_solvers) {
+    for (int i = 0; i < n_islands; ++i) {
+      stats.solver_setups += caches[i]->setups - setups0[i];
+      stats.solver_updates += caches[i]->updates - updates0[i];
+    }
+    // Islands come in increasing order of their smallest body (find_islands).
+    auto island = islands.begin();
+    for (auto it = convex_caches_.begin(); it != convex_caches_.end();) {
+      while (island != islands.end() && island->bodies.front() < it->first) ++island;
+      const bool used = island != islands.end() && island->bodies.front() == it->first;
+      it = used ? std::next(it) : convex_caches_.erase(it);
+    }
+  }
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     RigidBody& body = world.bodies[b];
     if (body.is_static || in_island[b]) continue;
