@@ -170,10 +170,10 @@ int main(int argc, char** argv) {
         cpu_series[{m, t}].second.push_back(r.w.cpu_per_step);
         std::printf("N=%d %s T=%d: %d steps%s, contacts %.1f (max %d), islands %d, unknowns %d, work %.1f, "
                     "%.4g s/step (cpu %.4g s, collision %.3g, solve %.3g), speedup %.3g, failed %ld, max_pen %.3g m, "
-                    "solver reuse %.2f%s%s\n",
+                    "solver reuse %.2f, qp assemble %.3g, setup/update %.3g, solve %.3g (factor %.3g)%s%s\n",
                     n, m.c_str(), t, r.w.steps, r.w.budget_hit ? " (budget hit)" : "", r.w.contacts_mean,
                     r.w.contacts_max, r.w.islands_max, r.w.unknowns_max, r.w.work_mean, r.w.seconds_per_step,
-                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.solver_reuse, r.w.first_failure.empty() ? "" : ": ",
+                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.solver_reuse, r.w.qp_assemble, r.w.qp_prepare, r.w.qp_solve, r.w.qp_factor, r.w.first_failure.empty() ? "" : ": ",
                     r.w.first_failure.c_str());
         std::fflush(stdout);
       }

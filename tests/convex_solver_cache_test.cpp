@@ -53,16 +53,16 @@ TEST(ConvexSolverCache, SameIslandIsUpdatedOtherPatternIsSetUp) {
 
   ConvexSolverCache cache(st.qp);
   const ContactSolution first = solve(s, st, &cache);
-  EXPECT_EQ(cache.setups, 2);  // both phases, fresh
-  EXPECT_EQ(cache.updates, 0);
+  EXPECT_EQ(cache.stats.setups, 2);  // both phases, fresh
+  EXPECT_EQ(cache.stats.updates, 0);
   expect_same(first, solve(s, st, nullptr), s);
 
   // Same contacts, other values (the bodies move faster downwards): updated in place.
   s.v_star(1) -= 0.5;
   s.phi *= 0.5;
   const ContactSolution second = solve(s, st, &cache);
-  EXPECT_EQ(cache.setups, 2);
-  EXPECT_EQ(cache.updates, 2);
+  EXPECT_EQ(cache.stats.setups, 2);
+  EXPECT_EQ(cache.stats.updates, 2);
   expect_same(second, solve(s, st, nullptr), s);
 
   // One contact fewer: another pattern, set up afresh, still the fresh answer.
@@ -90,8 +90,8 @@ TEST(ConvexSolverCache, SameIslandIsUpdatedOtherPatternIsSetUp) {
   t.mu = mu;
   t.friction_rows = rows;
   const ContactSolution third = solve(t, st, &cache);
-  EXPECT_EQ(cache.setups, 4);
-  EXPECT_EQ(cache.updates, 2);
+  EXPECT_EQ(cache.stats.setups, 4);
+  EXPECT_EQ(cache.stats.updates, 2);
   expect_same(third, solve(t, st, nullptr), t);
 }
 

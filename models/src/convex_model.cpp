@@ -6,6 +6,7 @@
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/convex_solver_cache.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -21,15 +22,30 @@ namespace {
 // leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
 constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // Sets `qp` up for `p`, or updates it in place when its last problem had p's pattern.
 void prepare(QpSolver& qp, const QpProblem& p, ConvexSolverCache& cache) {
+  const auto t0 = std::chrono::steady_clock::now();
   if (qp.can_update(p)) {
     qp.update(p);
-    ++cache.updates;
+    ++cache.stats.updates;
   } else {
     qp.setup(p);
-    ++cache.setups;
+    ++cache.stats.setups;
   }
+  cache.stats.prepare_seconds += seconds_since(t0);
+}
+
+// solve() with its wall time and factorization time added to `cache`.
+const QpResult& timed_solve(QpSolver& qp, ConvexSolverCache& cache) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const QpResult& r = qp.solve();
+  cache.stats.solve_seconds += seconds_since(t0);
+  cache.stats.factor_seconds += r.info.factor_seconds;
+  return r;
 }
 
 }  // namespace
@@ -63,16 +79,18 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
     out.v_next = s.v_star;
     return out;
   }
+  std::optional<ConvexSolverCache> fresh;
+  if (!cache) fresh.emplace(settings);
+  ConvexSolverCache& c = cache ? *cache : *fresh;
+  auto t0 = std::chrono::steady_clock::now();
   const detail::ConvexModelData data(s, bn, formulation);
 
   // Phase 1: frictionless normal impulses.
   const detail::ConvexPhaseQp p1 = detail::convex_phase1_qp(data, soft1);
-  std::optional<ConvexSolverCache> fresh;
-  if (!cache) fresh.emplace(settings);
-  ConvexSolverCache& c = cache ? *cache : *fresh;
+  c.stats.assemble_seconds += seconds_since(t0);
   QpSolver& qp1 = c.phase1;
   prepare(qp1, p1.problem, c);
-  const QpResult& r1 = qp1.solve();
+  const QpResult& r1 = timed_solve(qp1, c);
   out.work = r1.info.iterations;
   if (!has_solution(r1.info.status)) {
     out.status = ContactStatus::failed;
@@ -86,7 +104,9 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   const double kappa = lambda1.sum();
 
   // Phase 2: friction, bounded by κ, with the normal softening term on λn.
+  t0 = std::chrono::steady_clock::now();
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
+  c.stats.assemble_seconds += seconds_since(t0);
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;
   for (double slack : kKappaSlack) {
@@ -95,7 +115,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
       prepare(qp2, p2.problem, c);
     else
       qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
-    r2 = &qp2.solve();
+    r2 = &timed_solve(qp2, c);
     out.work += r2->info.iterations;
     if (has_solution(r2->info.status)) break;
   }

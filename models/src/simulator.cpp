@@ -243,12 +243,12 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   // Convex model: each island's cached phase solvers (convex_solver_cache.hpp), matched by
   // the island's smallest body; caches of islands that are gone are dropped below.
   std::vector<ConvexSolverCache*> caches(islands.size(), nullptr);
-  std::vector<long> setups0(islands.size(), 0), updates0(islands.size(), 0);
+  std::vector<ConvexSolverStats> before;  // counters at the start of the step
   if (!lcp && settings_.reuse_convex_solvers) {
+    before.reserve(islands.size());
     for (int i = 0; i < n_islands; ++i) {
       caches[i] = &convex_caches_.try_emplace(islands[i].bodies.front(), settings_.qp).first->second;
-      setups0[i] = caches[i]->setups;
-      updates0[i] = caches[i]->updates;
+      before.push_back(caches[i]->stats);
     }
   }
 #ifdef LCPRELAX_HAS_OPENMP
@@ -359,8 +359,13 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   warm_.swap(next_warm);
   if (!lcp && settings_.reuse_convex_solvers) {
     for (int i = 0; i < n_islands; ++i) {
-      stats.solver_setups += caches[i]->setups - setups0[i];
-      stats.solver_updates += caches[i]->updates - updates0[i];
+      const ConvexSolverStats& c = caches[i]->stats;
+      stats.solver_setups += c.setups - before[i].setups;
+      stats.solver_updates += c.updates - before[i].updates;
+      stats.qp_assemble_seconds += c.assemble_seconds - before[i].assemble_seconds;
+      stats.qp_prepare_seconds += c.prepare_seconds - before[i].prepare_seconds;
+      stats.qp_solve_seconds += c.solve_seconds - before[i].solve_seconds;
+      stats.qp_factor_seconds += c.factor_seconds - before[i].factor_seconds;
     }
     // Islands come in increasing order of their smallest body (find_islands).
     auto island = islands.begin();

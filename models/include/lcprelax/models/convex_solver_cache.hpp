@@ -11,19 +11,29 @@
 // spirit of PIQP's and OSQP's setup → solve → update → solve lifecycle.
 //
 // The pattern test is QpSolver::can_update; a cache whose solvers cannot be updated is set
-// up afresh (counted in `setups`). A cache belongs to one island at a time and is not
+// up afresh (counted in `stats.setups`). A cache belongs to one island at a time and is not
 // thread-safe; the simulator keeps one per island (simulator.cpp).
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 
 namespace lcprelax {
 
+/// What the solves through one cache did (cumulative).
+struct ConvexSolverStats {
+  long setups = 0;   ///< phase solvers set up afresh (new pattern): a symbolic analysis each
+  long updates = 0;  ///< phase solvers updated in place (pattern repeated)
+  // Wall time (s, steady_clock), for profiles: building the phase QPs (Delassus or lifted
+  // data, triplets, CSC), setup()/update() (scaling, KKT pattern; setup() adds the
+  // ordering and symbolic analysis), solve() and, within it, the numeric factorizations
+  // (QpInfo::factor_seconds).
+  double assemble_seconds = 0.0, prepare_seconds = 0.0, solve_seconds = 0.0, factor_seconds = 0.0;
+};
+
 struct ConvexSolverCache {
   explicit ConvexSolverCache(const QpSettings& settings = {}) : phase1(settings), phase2(settings) {}
   QpSolver phase1;  ///< frictionless normal impulses (convex_phase1_qp)
   QpSolver phase2;  ///< friction bounded by κ (convex_phase2_qp)
-  long setups = 0;   ///< phase solvers set up afresh (new pattern): a symbolic analysis each
-  long updates = 0;  ///< phase solvers updated in place (pattern repeated)
+  ConvexSolverStats stats;
 };
 
 }  // namespace lcprelax

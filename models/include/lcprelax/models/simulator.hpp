@@ -98,6 +98,10 @@ struct StepStats {
   /// Convex model: phase solvers set up afresh (a symbolic analysis each) and phase solvers
   /// updated in place because the island's QP pattern repeated (convex_solver_cache.hpp).
   long solver_setups = 0, solver_updates = 0;
+  /// Convex model with reuse_convex_solvers: wall time (s, summed over islands) of building
+  /// the phase QPs, of QpSolver setup()/update(), of solve() and, within it, of the numeric
+  /// KKT factorizations (ConvexSolverCache).
+  double qp_assemble_seconds = 0.0, qp_prepare_seconds = 0.0, qp_solve_seconds = 0.0, qp_factor_seconds = 0.0;
 };
 
 /// The contacts a step poses, and their islands: what Simulator::step solves, shared with
