@@ -317,6 +317,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       if (!has_solution(wk.solution.status) && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;
     } catch (const std::exception& e) {
       wk.error = e.what();
+      if (caches[i]) *caches[i] = ConvexSolverCache(settings_.qp);  // no half-set-up solver kept
     }
   }
   for (const IslandWork& wk : work)
