@@ -116,6 +116,13 @@ struct WindowStats {
   long failed_islands = 0;
   double max_penetration = 0.0;  ///< m
   double final_speed = 0.0;      ///< max_body_speed after the window (m/s)
+  /// Convex model: phase solvers updated in place / all phase solvers prepared (the share of
+  /// symbolic analyses saved by SimulatorSettings::reuse_convex_solvers); 0 without.
+  double solver_reuse = 0.0;
+  /// Convex model with reuse_convex_solvers, per step (s): StepStats::qp_assemble_seconds,
+  /// qp_prepare_seconds (setup/update incl. symbolic analysis), qp_solve_seconds and the
+  /// numeric factorizations within it (qp_factor_seconds).
+  double qp_assemble = 0.0, qp_prepare = 0.0, qp_solve = 0.0, qp_factor = 0.0;
   std::string first_failure;
 };
 
@@ -126,6 +133,7 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
   for (int k = 0; k < warmup; ++k) sim.step();
   WindowStats w;
   double total = 0.0, cpu = 0.0, contacts = 0.0, work = 0.0, collision = 0.0, solve = 0.0;
+  long updates = 0, prepared = 0;
   for (int k = 0; k < steps; ++k) {
     const double t0 = now_seconds(), c0 = cpu_seconds();
     const StepStats st = sim.step();
@@ -136,6 +144,12 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
     work += static_cast<double>(st.work);
     collision += st.collision_seconds;
     solve += st.solve_seconds;
+    updates += st.solver_updates;
+    w.qp_assemble += st.qp_assemble_seconds;
+    w.qp_prepare += st.qp_prepare_seconds;
+    w.qp_solve += st.qp_solve_seconds;
+    w.qp_factor += st.qp_factor_seconds;
+    prepared += st.solver_updates + st.solver_setups;
     w.contacts_max = std::max(w.contacts_max, st.contacts);
     w.islands_max = std::max(w.islands_max, st.islands);
     w.unknowns_max = std::max(w.unknowns_max, st.largest_island_unknowns);
@@ -153,6 +167,8 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
   w.work_mean = w.steps > 0 ? work / w.steps : 0.0;
   w.collision_mean = w.steps > 0 ? collision / w.steps : 0.0;
   w.solve_mean = w.steps > 0 ? solve / w.steps : 0.0;
+  for (double* x : {&w.qp_assemble, &w.qp_prepare, &w.qp_solve, &w.qp_factor}) *x = w.steps > 0 ? *x / w.steps : 0.0;
+  w.solver_reuse = prepared > 0 ? static_cast<double>(updates) / static_cast<double>(prepared) : 0.0;
   w.final_speed = max_body_speed(sim.world());
   return w;
 }

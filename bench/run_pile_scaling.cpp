@@ -1,7 +1,7 @@
 // run_pile_scaling: time per step of lcprelax's Simulator against the number of bodies
 // and contacts of a settled pile, for both contact models and 1 vs T OpenMP threads.
 //
-//   run_pile_scaling [--sizes 10,20,...] [--steps 10] [--warmup 2] [--models lcp,convex]
+//   run_pile_scaling [--sizes 10,20,...] [--steps 10] [--warmup 2] [--models lcp,convex,convex-fresh]
 //                    [--threads 1,2] [--lcp-max-bodies 100] [--budget 60]
 //                    [--settle-max-steps 150] [--settle-speed 0.05] [--settle-budget 1200]
 //                    [--seed 1] [--csv pile_scaling.csv]
@@ -14,7 +14,10 @@
 // the CSV row with phase = settle (they are what `lcprelax pile --json` reports for those
 // steps). Then, from that same settled state, for every model and thread count
 // (SimulatorSettings::threads), a fresh Simulator runs --warmup untimed steps and
-// --steps timed steps (phase = window; pile_timing.hpp time_window). The LCP model is run
+// --steps timed steps (phase = window; pile_timing.hpp time_window). Model convex-fresh is
+// the convex model without SimulatorSettings::reuse_convex_solvers (fresh phase solvers and
+// symbolic analyses every step), for before/after timings in one run; the printed "solver
+// reuse" is the share of phase solvers updated in place. The LCP model is run
 // only up to --lcp-max-bodies bodies (row with steps = 0 and a note above), and every
 // window stops once its timed steps used --budget s (budget_hit = 1).
 // speedup_vs_1 = (s/step with 1 thread) / (s/step with this many threads), same run, same
@@ -85,7 +88,7 @@ int main(int argc, char** argv) {
   app.add_option("--sizes", sizes, "Numbers of bodies")->delimiter(',')->check(CLI::Range(1, 1000000));
   app.add_option("--steps", steps, "Timed steps per window")->check(CLI::Range(1, 1000000))->capture_default_str();
   app.add_option("--warmup", warmup, "Untimed steps before each window")->check(CLI::Range(0, 1000))->capture_default_str();
-  app.add_option("--models", models, "Contact models")->delimiter(',')->check(CLI::IsMember({"lcp", "convex"}));
+  app.add_option("--models", models, "Contact models")->delimiter(',')->check(CLI::IsMember({"lcp", "convex", "convex-fresh"}));
   app.add_option("--threads", threads, "Thread counts (1 is needed for speedup_vs_1)")
       ->delimiter(',')
       ->check(CLI::Range(1, 1024));
@@ -139,7 +142,9 @@ int main(int argc, char** argv) {
 
     for (const std::string& m : models) {
       Scene scene = s.scene;
-      scene.settings.model = parse_contact_model(m);
+      // convex-fresh: the convex model with fresh phase solvers every step (no reuse).
+      const bool fresh = m == "convex-fresh";
+      scene.settings.model = parse_contact_model(fresh ? "convex" : m);
       double t1 = 0.0;
       for (const int t : threads) {
         Row r;
@@ -154,6 +159,7 @@ int main(int argc, char** argv) {
         }
         SimulatorSettings settings;
         settings.threads = t;
+        settings.reuse_convex_solvers = !fresh;
         r.w = time_window(scene, settings, warmup, steps, budget);
         if (t == 1) t1 = r.w.seconds_per_step;
         if (t1 > 0 && r.w.seconds_per_step > 0) r.speedup = t1 / r.w.seconds_per_step;
@@ -163,10 +169,11 @@ int main(int argc, char** argv) {
         cpu_series[{m, t}].first.push_back(r.w.contacts_mean);
         cpu_series[{m, t}].second.push_back(r.w.cpu_per_step);
         std::printf("N=%d %s T=%d: %d steps%s, contacts %.1f (max %d), islands %d, unknowns %d, work %.1f, "
-                    "%.4g s/step (cpu %.4g s, collision %.3g, solve %.3g), speedup %.3g, failed %ld, max_pen %.3g m%s%s\n",
+                    "%.4g s/step (cpu %.4g s, collision %.3g, solve %.3g), speedup %.3g, failed %ld, max_pen %.3g m, "
+                    "solver reuse %.2f, qp assemble %.3g, setup/update %.3g, solve %.3g (factor %.3g)%s%s\n",
                     n, m.c_str(), t, r.w.steps, r.w.budget_hit ? " (budget hit)" : "", r.w.contacts_mean,
                     r.w.contacts_max, r.w.islands_max, r.w.unknowns_max, r.w.work_mean, r.w.seconds_per_step,
-                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.first_failure.empty() ? "" : ": ",
+                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.solver_reuse, r.w.qp_assemble, r.w.qp_prepare, r.w.qp_solve, r.w.qp_factor, r.w.first_failure.empty() ? "" : ": ",
                     r.w.first_failure.c_str());
         std::fflush(stdout);
       }

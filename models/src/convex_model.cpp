@@ -4,9 +4,12 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/convex_solver_cache.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace lcprelax {
 namespace {
@@ -19,11 +22,42 @@ namespace {
 // leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
 constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Sets `qp` up for `p`, or updates it in place when its last problem had p's pattern.
+void prepare(QpSolver& qp, const QpProblem& p, ConvexSolverCache& cache) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (qp.can_update(p)) {
+    qp.update(p);
+    ++cache.stats.updates;
+  } else {
+    qp.setup(p);
+    ++cache.stats.setups;
+  }
+  cache.stats.prepare_seconds += seconds_since(t0);
+}
+
+// solve() with its wall time and factorization time added to `cache`.
+const QpResult& timed_solve(QpSolver& qp, ConvexSolverCache& cache) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const QpResult& r = qp.solve();
+  cache.stats.solve_seconds += seconds_since(t0);
+  cache.stats.factor_seconds += r.info.factor_seconds;
+  return r;
+}
 
 }  // namespace
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening) {
+  return solve_convex_model(s, dt, settings, rho, formulation, softening, nullptr);
+}
+
+ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
+                                   ConvexFormulation formulation, const NormalSofteningSettings& softening,
+                                   ConvexSolverCache* cache) {
   if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
   const Index nc = s.num_contacts(), nf = s.num_friction();
   ContactSolution out;
@@ -45,13 +79,18 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
     out.v_next = s.v_star;
     return out;
   }
+  std::optional<ConvexSolverCache> fresh;
+  if (!cache) fresh.emplace(settings);
+  ConvexSolverCache& c = cache ? *cache : *fresh;
+  auto t0 = std::chrono::steady_clock::now();
   const detail::ConvexModelData data(s, bn, formulation);
 
   // Phase 1: frictionless normal impulses.
   const detail::ConvexPhaseQp p1 = detail::convex_phase1_qp(data, soft1);
-  QpSolver qp1(settings);
-  qp1.setup(p1.problem);
-  const QpResult& r1 = qp1.solve();
+  c.stats.assemble_seconds += seconds_since(t0);
+  QpSolver& qp1 = c.phase1;
+  prepare(qp1, p1.problem, c);
+  const QpResult& r1 = timed_solve(qp1, c);
   out.work = r1.info.iterations;
   if (!has_solution(r1.info.status)) {
     out.status = ContactStatus::failed;
@@ -65,34 +104,36 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   const double kappa = lambda1.sum();
 
   // Phase 2: friction, bounded by κ, with the normal softening term on λn.
+  t0 = std::chrono::steady_clock::now();
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
-  QpResult r2;
-  QpSolver qp2(settings);
+  c.stats.assemble_seconds += seconds_since(t0);
+  const QpResult* r2 = nullptr;
+  QpSolver& qp2 = c.phase2;
   for (double slack : kKappaSlack) {
     p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
     if (slack == kKappaSlack[0])
-      qp2.setup(p2.problem);
+      prepare(qp2, p2.problem, c);
     else
       qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
-    r2 = qp2.solve();
-    out.work += r2.info.iterations;
-    if (has_solution(r2.info.status)) break;
+    r2 = &timed_solve(qp2, c);
+    out.work += r2->info.iterations;
+    if (has_solution(r2->info.status)) break;
   }
-  out.residual = std::max(r2.info.primal_residual, r2.info.dual_residual);
-  if (!has_solution(r2.info.status)) {
+  out.residual = std::max(r2->info.primal_residual, r2->info.dual_residual);
+  if (!has_solution(r2->info.status)) {
     // Not solved; phase 1's frictionless answer is returned with it (contact_step.hpp).
     out.status = ContactStatus::failed;
-    out.message = std::string("phase 2: ") + to_string(r2.info.status) + ": " + r2.info.message;
+    out.message = std::string("phase 2: ") + to_string(r2->info.status) + ": " + r2->info.message;
     out.lambda_n = lambda1;
     out.lambda_t = Vector::Zero(nf);
     out.v_next = s.v_star + s.minv.cwiseProduct(s.Jn.transpose() * out.lambda_n);
     return out;
   }
-  const bool exact = r1.info.status == QpStatus::solved && r2.info.status == QpStatus::solved;
+  const bool exact = r1.info.status == QpStatus::solved && r2->info.status == QpStatus::solved;
   out.status = exact ? ContactStatus::solved : ContactStatus::solved_inaccurate;
   if (!exact) out.message = "a phase stalled within 1e3·eps (solved_inaccurate)";
-  out.lambda_n = r2.x.segment(p2.lambda_offset, nc).cwiseMax(0.0);
-  out.lambda_t = r2.x.segment(p2.lambda_offset + nc, nf);
+  out.lambda_n = r2->x.segment(p2.lambda_offset, nc).cwiseMax(0.0);
+  out.lambda_t = r2->x.segment(p2.lambda_offset + nc, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;
   out.v_next = s.v_star + s.minv.cwiseProduct(impulse);
   return out;

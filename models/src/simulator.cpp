@@ -5,6 +5,7 @@
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -239,6 +240,17 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   std::vector<IslandWork> work(islands.size());
   const bool lcp = settings_.model == ContactModel::lcp;
   const int n_islands = static_cast<int>(islands.size());
+  // Convex model: each island's cached phase solvers (convex_solver_cache.hpp), matched by
+  // the island's smallest body; caches of islands that are gone are dropped below.
+  std::vector<ConvexSolverCache*> caches(islands.size(), nullptr);
+  std::vector<ConvexSolverStats> before;  // counters at the start of the step
+  if (!lcp && settings_.reuse_convex_solvers) {
+    before.reserve(islands.size());
+    for (int i = 0; i < n_islands; ++i) {
+      caches[i] = &convex_caches_.try_emplace(islands[i].bodies.front(), settings_.qp).first->second;
+      before.push_back(caches[i]->stats);
+    }
+  }
 #ifdef LCPRELAX_HAS_OPENMP
   const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
@@ -276,7 +288,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm);
       } else {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
-                                         settings_.convex_softening);
+                                         settings_.convex_softening, caches[i]);
       }
       // A fallback's answer is used, but the island still counts as failed.
       if (!has_solution(wk.solution.status) && lcp && !redundant_island(s)) {  // fallback: the convex model
@@ -305,6 +317,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       if (!has_solution(wk.solution.status) && wk.solution.v_next.size() != s.num_dofs()) wk.solution.v_next = s.v_star;
     } catch (const std::exception& e) {
       wk.error = e.what();
+      if (caches[i]) *caches[i] = ConvexSolverCache(settings_.qp);  // no half-set-up solver kept
     }
   }
   for (const IslandWork& wk : work)
@@ -345,6 +358,24 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     }
   }
   warm_.swap(next_warm);
+  if (!lcp && settings_.reuse_convex_solvers) {
+    for (int i = 0; i < n_islands; ++i) {
+      const ConvexSolverStats& c = caches[i]->stats;
+      stats.solver_setups += c.setups - before[i].setups;
+      stats.solver_updates += c.updates - before[i].updates;
+      stats.qp_assemble_seconds += c.assemble_seconds - before[i].assemble_seconds;
+      stats.qp_prepare_seconds += c.prepare_seconds - before[i].prepare_seconds;
+      stats.qp_solve_seconds += c.solve_seconds - before[i].solve_seconds;
+      stats.qp_factor_seconds += c.factor_seconds - before[i].factor_seconds;
+    }
+    // Islands come in increasing order of their smallest body (find_islands).
+    auto island = islands.begin();
+    for (auto it = convex_caches_.begin(); it != convex_caches_.end();) {
+      while (island != islands.end() && island->bodies.front() < it->first) ++island;
+      const bool used = island != islands.end() && island->bodies.front() == it->first;
+      it = used ? std::next(it) : convex_caches_.erase(it);
+    }
+  }
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     RigidBody& body = world.bodies[b];
     if (body.is_static || in_island[b]) continue;

@@ -142,4 +142,13 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
                                    double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic,
                                    const NormalSofteningSettings& softening = {});
 
+struct ConvexSolverCache;  // convex_solver_cache.hpp
+
+/// As above, with the phase solvers kept in `cache` (may be null: fresh solvers): a phase
+/// whose QP has the pattern of the cache's last one is updated in place (its symbolic
+/// analysis reused), else set up afresh. The answer is that of the fresh solve to roundoff.
+ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
+                                   ConvexFormulation formulation, const NormalSofteningSettings& softening,
+                                   ConvexSolverCache* cache);
+
 }  // namespace lcprelax

@@ -21,6 +21,7 @@
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/convex_solver_cache.hpp>
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/world/world.hpp>
 
@@ -64,6 +65,10 @@ struct SimulatorSettings {
   bool post_stabilization = true;
   bool warm_start = true;
   int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
+  /// Convex model: keep each island's phase solvers between steps and update them in place
+  /// while the island's QP pattern repeats (convex_solver_cache.hpp; same answers to
+  /// roundoff); false: fresh solvers (a new symbolic analysis) every step.
+  bool reuse_convex_solvers = true;
   SimulatorSettings();
 
   /// Empty when valid, else a message naming the first bad field ("dt: must be ...").
@@ -90,6 +95,13 @@ struct StepStats {
   int projected_islands = 0;     ///< islands whose positions the post-stabilization moved
   int failed_projections = 0;    ///< islands whose projection failed (positions left as they were)
   double collision_seconds = 0.0, solve_seconds = 0.0;
+  /// Convex model: phase solvers set up afresh (a symbolic analysis each) and phase solvers
+  /// updated in place because the island's QP pattern repeated (convex_solver_cache.hpp).
+  long solver_setups = 0, solver_updates = 0;
+  /// Convex model with reuse_convex_solvers: wall time (s, summed over islands) of building
+  /// the phase QPs, of QpSolver setup()/update(), of solve() and, within it, of the numeric
+  /// KKT factorizations (ConvexSolverCache).
+  double qp_assemble_seconds = 0.0, qp_prepare_seconds = 0.0, qp_solve_seconds = 0.0, qp_factor_seconds = 0.0;
 };
 
 /// The contacts a step poses, and their islands: what Simulator::step solves, shared with
@@ -151,6 +163,9 @@ class Simulator {
   long steps_ = 0;
   std::vector<Contact> contacts_;
   std::map<ContactKey, WarmEntry> warm_;
+  /// Convex model: each island's phase solvers, keyed by the island's smallest body index
+  /// (an island keeps it while its bodies stay together); dropped when no island has it.
+  std::map<int, ConvexSolverCache> convex_caches_;
 };
 
 }  // namespace lcprelax
