@@ -10,7 +10,9 @@
 #   convex_map  the same in two runs: first with a Gaussian prior on the free parameters
 #               centred on the initial values (--prior-weight $PRIOR, default 1), then
 #               without it from the first run's result (--init-from), which removes the
-#               prior's bias; the first run's JSON is kept as <run>_<bodies>_seed<S>.stage1;
+#               prior's bias; the first run's JSON is kept as <run>_<bodies>_seed<S>.stage1
+#               (at most $STAGE1_EPOCHS epochs, default 40: the biased minimum is only a
+#               start);
 #   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
 #               convex model's class: what it recovers there).
 # Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and
@@ -24,27 +26,28 @@ SEEDS=${2:-1}
 BODIES=${3:-30}
 RUNS=${4:-relaxed convex convex_lcp}
 PRIOR=${PRIOR:-1}
+STAGE1_EPOCHS=${STAGE1_EPOCHS:-40}
 R=bench/results
 OUT=$R/learn_scene_recovery
 mkdir -p "$OUT"
-LM="--optimizer lm --epochs 200 --phase1-deviation 0 --phase1-regularization 1e-6"
+LM="--optimizer lm --phase1-deviation 0 --phase1-regularization 1e-6"
 for seed in $SEEDS; do
   for run in $RUNS; do
     case $run in
       relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
-      convex) args="--method convex $LM" ;;
-      convex_geo) args="--method convex $LM --lm-geodesic" ;;
+      convex) args="--method convex $LM --epochs 200" ;;
+      convex_geo) args="--method convex $LM --epochs 200 --lm-geodesic" ;;
       convex_map) ;;
-      convex_lcp) args="--method convex --data-model lcp $LM" ;;
+      convex_lcp) args="--method convex --data-model lcp $LM --epochs 200" ;;
       *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_map, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
     if [ "$run" = convex_map ]; then
-      echo "== learn scene --method convex $LM --prior-weight $PRIOR --bodies $BODIES --seed $seed" >&2
+      echo "== learn scene --method convex $LM --epochs $STAGE1_EPOCHS --prior-weight $PRIOR --bodies $BODIES --seed $seed" >&2
       # shellcheck disable=SC2086
-      "$BUILD/apps/lcprelax" learn scene --method convex $LM --prior-weight "$PRIOR" --bodies "$BODIES" \
+      "$BUILD/apps/lcprelax" learn scene --method convex $LM --epochs "$STAGE1_EPOCHS" --prior-weight "$PRIOR" --bodies "$BODIES" \
         --seed "$seed" --json > "$OUT/${run}_${BODIES}_seed${seed}.stage1"
-      args="--method convex $LM --init-from $OUT/${run}_${BODIES}_seed${seed}.stage1"
+      args="--method convex $LM --epochs 200 --init-from $OUT/${run}_${BODIES}_seed${seed}.stage1"
     fi
     echo "== learn scene $args --bodies $BODIES --seed $seed" >&2
     # shellcheck disable=SC2086
