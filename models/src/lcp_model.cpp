@@ -116,6 +116,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   if (has_warm && !solved(r)) {
     LemkeSettings warm_crash = plain;
     warm_crash.crash_start = true;
+    warm_crash.crash_cold_fallback = false;  // step 3 is the cold start
     warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
     const LcpResult& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
     if (solved(&rc)) {
