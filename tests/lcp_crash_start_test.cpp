@@ -169,5 +169,44 @@ TEST(LemkeCrashStart, BackwardDifferentiatesTheFinalBasis) {
   }
 }
 
+TEST(LemkeCrashStart, WithoutColdFallbackTheCrashPathAloneIsCapped) {
+  // LemkeSettings::crash_cold_fallback = false: a crash path stopped by max_pivots ends the
+  // solve (status pivot_limit, at most max_pivots pivots); with the default the cold start
+  // runs after it in the same solve, and the pivots add up beyond max_pivots.
+  const Index n = 40;
+  std::mt19937 gen(3);
+  std::normal_distribution<double> normal;
+  DenseMatrix A = DenseMatrix::Zero(n, n);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < n; ++j) A(i, j) = (i + 2 * j) % 3 == 0 ? normal(gen) : 0.0;
+  const SparseMatrix M = dense_to_sparse(A.transpose() * A + DenseMatrix::Identity(n, n));
+  Vector q(n);
+  for (Index i = 0; i < n; ++i) q(i) = normal(gen);
+  std::vector<bool> far(static_cast<std::size_t>(n));  // the complement of the solution's basis
+  LemkeSolver exact;
+  exact.setup(M, q);
+  ASSERT_EQ(exact.solve().info.status, LcpStatus::solved);
+  for (Index i = 0; i < n; ++i) far[static_cast<std::size_t>(i)] = !exact.result().z_basic[static_cast<std::size_t>(i)];
+  for (bool fallback : {false, true}) {
+    LemkeSettings settings;
+    settings.crash_start = true;
+    settings.crash_cold_fallback = fallback;
+    settings.max_pivots = 2;
+    settings.covering_retries = 0;
+    settings.regularization_retries = 0;
+    LemkeSolver s(settings);
+    s.setup(M, q);
+    s.warm_start(far);
+    const LcpResult& r = s.solve();
+    if (!fallback) {
+      EXPECT_TRUE(r.info.status == LcpStatus::pivot_limit || r.info.status == LcpStatus::numerical_error)
+          << r.info.message;
+      EXPECT_LE(r.info.pivots, 2);
+    } else {
+      EXPECT_GT(r.info.pivots, 2) << r.info.message;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace lcprelax

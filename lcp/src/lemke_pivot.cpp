@@ -45,8 +45,10 @@ void LemkeSolver::Impl::run() {
     bool factorized = load_warm_basis();
     if (!factorized && settings.crash_start && repair_warm_basis()) factorized = load_warm_basis();
     if (try_warm_start(factorized)) return;
+    if (settings.crash_start && !settings.crash_cold_fallback && !factorized)
+      return finish(LcpStatus::numerical_error, "crash basis is singular (no cold fallback)");
     if (factorized && settings.crash_start) {
-      if (try_crash_start()) return;
+      if (try_crash_start() || !settings.crash_cold_fallback) return;
       crash_pivots = result.info.pivots;  // a failed crash path: cold start, pivots add up
       factor_current = false;
     }

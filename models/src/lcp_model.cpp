@@ -94,37 +94,56 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     return res;
   };
   auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
-  // 1. The warm basis on q where it is feasible (a crash path from the previous step's
-  //    basis rarely pays: on a 200-body pile every one hit a cap of n/10 pivots).
-  if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
-  // 2. Perturbed q + δu from the all-w basis, polished on q by a short crash path from its
-  //    solution's basis.
-  const LcpResult* inexact = nullptr;
-  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
-  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
+  auto perturbed = [&](double delta, int seed) {
     Vector q = lcp.q;
     for (Index i = 0; i < n; ++i) q(i) += delta * perturbation_weight(i, seed);
-    const LcpResult& rp = attempt(plain, q, nullptr);
-    if (!solved(&rp)) continue;
+    return q;
+  };
+  // A solution of a perturbed q, polished on q from its basis (a short crash path): r
+  // when the polish solves q, else kept as the inexact fallback.
+  const LcpResult* inexact = nullptr;
+  auto polish_on_q = [&](const LcpResult& rp) {
     const LcpResult& polished = attempt(polish, lcp.q, &rp.z_basic);
     if (solved(&polished)) r = &polished;
     else inexact = &rp;
+  };
+  // 1. The warm basis on q where it is feasible.
+  if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
+  // 2. A crash path on the perturbed q from the warm basis, at most
+  //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. A failed polish
+  //    leaves the cold attempts their chance (no inexact fallback from here).
+  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
+  if (has_warm && !solved(r)) {
+    LemkeSettings warm_crash = plain;
+    warm_crash.crash_start = true;
+    warm_crash.crash_cold_fallback = false;  // step 3 is the cold start
+    warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
+    const LcpResult& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
+    if (solved(&rc)) {
+      const LcpResult& polished = attempt(polish, lcp.q, &rc.z_basic);
+      if (solved(&polished)) r = &polished;
+    }
   }
-  // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
+  // 3. Perturbed q + δu from the all-w basis, polished on q.
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
+    const LcpResult& rp = attempt(plain, perturbed(delta, seed), nullptr);
+    if (solved(&rp)) polish_on_q(rp);
+  }
+  // 4. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution.
-  bool perturbed = false;
+  bool from_perturbed = false;
   if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;
-    perturbed = true;
+    from_perturbed = true;
   }
-  // 4. The caller's settings (covering-vector and M + εI retries).
+  // 5. The caller's settings (covering-vector and M + εI retries).
   if (!solved(r)) r = &attempt(settings, lcp.q, nullptr);
 
   ContactSolution out;
-  out.status = !solved(r) ? ContactStatus::failed : perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;
+  out.status = !solved(r) ? ContactStatus::failed : from_perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;
   out.message = !solved(r)  ? "lcp: " + r->info.message
-                : perturbed ? std::string("solved on a perturbed q (polishing on q failed)")
+                : from_perturbed ? std::string("solved on a perturbed q (polishing on q failed)")
                             : r->info.message;
   out.work = pivots;
   out.z_basic = r->z_basic;

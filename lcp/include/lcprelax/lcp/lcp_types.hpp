@@ -100,6 +100,10 @@ struct LemkeSettings {
   /// 2,020 contacts: 1,900 pivots against 5,274 cold), and the LCP contact model's polish
   /// of a perturbed solution (models/contact_step.hpp: 0–30 pivots from its basis).
   bool crash_start = false;
+  /// After a failed crash path (or a warm basis that does not factorize), run the cold
+  /// start in the same solve (true), or stop with the crash path's status (false: the
+  /// caller has its own cold attempt; max_pivots then bounds the crash path alone).
+  bool crash_cold_fallback = true;
 
   /// Empty when valid, else a message naming the first bad field.
   std::string validation_error() const;

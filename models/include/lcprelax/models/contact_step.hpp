@@ -19,6 +19,9 @@
 //   end on a secondary ray or a singular basis by roundoff. solve_lcp_model therefore
 //   tries, cheapest first, with Lemke's own retries only in the last attempt:
 //   1. the warm basis (if given) where its basic solution on q is feasible (no pivots);
+//   1b. a crash path (LemkeSettings::crash_start) from the warm basis on the perturbed q of
+//      step 2 (first pattern), at most kLcpWarmCrashPivotsPerUnknown pivots per unknown,
+//      then the polish of step 2; if either fails, step 2 runs as without a warm basis;
 //   2. Lemke from the all-w basis on the perturbed q + δu, δ = kLcpPerturbation·‖q‖∞,
 //      u_i ∈ [½, 1) pseudo-random per row (deterministic): distinct positive offsets break
 //      the ties of the degenerate pivots (the perturbation that the lexicographic rule only
@@ -70,6 +73,11 @@ constexpr double kLcpPerturbation = 1e-7;
 /// Perturbation patterns tried before Lemke's own (costly) retries; the last has
 /// δ = 100·kLcpPerturbation·‖q‖∞.
 constexpr int kLcpPerturbationSeeds = 3;
+/// Pivot cap per LCP unknown of the crash path from the previous step's basis (step 1b
+/// above). On a dropping 300-body pile (islands of 3,360–4,300 unknowns, steps 20–30) the
+/// paths took 0.22–0.39 pivots per unknown (once 0.67) against 0.65–0.78 for the cold
+/// path; at 1/10 (the earlier cap) they all stopped at the cap.
+constexpr double kLcpWarmCrashPivotsPerUnknown = 0.5;
 /// Pivot cap per LCP unknown of the exact attempt from the all-w basis (step 3 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
