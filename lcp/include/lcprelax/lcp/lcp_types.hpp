@@ -93,8 +93,10 @@ struct LemkeSettings {
   /// lemke.hpp) before the cold start from the all-w basis. For a basis close to the
   /// solution's (fc2d_pgs.hpp: granular 667 contacts, 568 pivots against 1,405 cold). Off by
   /// default: from the previous time step's basis (the simulator's warm start) the crash
-  /// paths are long and often fail (200-body LCP pile: 35,603 pivots per step against 19,545
-  /// cold, bench/run_pile_scaling); from a PGS basis of the pile's island LCP too (crash
+  /// paths are long and often fail when run unbounded (200-body LCP pile: 35,603 pivots per
+  /// step against 19,545 cold, bench/run_pile_scaling); the LCP contact model therefore runs
+  /// it capped at n/2 pivots without the cold fallback (crash_cold_fallback = false,
+  /// models/contact_step.hpp), where it pays on about one step in three; from a PGS basis of the pile's island LCP too (crash
   /// paths end on a ray or a singular basis within 1–34 pivots, then the cold start runs).
   /// The Siconos fc2d problems are where it pays (`lcprelax fc2d --crash pgs`; granular
   /// 2,020 contacts: 1,900 pivots against 5,274 cold), and the LCP contact model's polish
