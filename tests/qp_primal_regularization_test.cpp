@@ -1,5 +1,5 @@
-// The interior point lowers its primal regularization ρ (QpSettings::reg_primal) to
-// QpSettings::primal_reg_drop once the scaled dual residual survives two full steps in a row
+// With QpSettings::primal_reg_drop > 0 (off by default) the interior point lowers its
+// primal regularization ρ (QpSettings::reg_primal) to primal_reg_drop once the scaled dual residual survives two full steps in a row
 // (kkt/src/qp_ipm_loop.cpp). With ρ on the (1,1) block, refinement against the
 // unregularized KKT matrix contracts by only ρ/(ρ + P̃_jj + z/s) on the column of a variable
 // far from its bounds, so a step moves it by at most about |r_d,j|/ρ; Mehrotra's starting
@@ -80,7 +80,7 @@ TEST(QpPrimalRegularization, ShiftedLpFamilySolvedWithTheDrop) {
     for (double a : {1.0, 10.0, 100.0}) {
       SCOPED_TRACE("seed " + std::to_string(seed) + " a " + std::to_string(a));
       const QpProblem p = make_shifted_lp(seed, a, 1e6, 10.0);
-      const QpResult with = solve(p, QpSettings{}.primal_reg_drop);
+      const QpResult with = solve(p, 1e-13);
       const QpResult without = solve(p, 0.0);
       solved_with += with.info.status == QpStatus::solved;
       solved_without += without.info.status == QpStatus::solved;
