@@ -6,7 +6,8 @@
 //
 // --only runs the named problems (file stems) of DIR; --verbose prints the solver's
 // per-iteration log on stderr; --no-exact-bound-steps and --no-clean-bound-multipliers
-// switch off the QpSettings of those names (ablation).
+// switch off the QpSettings of those names, --no-primal-reg-drop sets
+// QpSettings::primal_reg_drop = 0 (ablation).
 //
 // Success (qpbenchmark's "high accuracy" when eps = 1e-9):
 // - lcprelax: status solved and the primal residual, dual residual and duality gap it
@@ -57,7 +58,7 @@ struct Options {
   std::string clp = "clp";
   bool use_clp = true;
   bool verbose = false;
-  bool exact_bound_steps = true, clean_bound_multipliers = true;
+  bool exact_bound_steps = true, clean_bound_multipliers = true, primal_reg_drop = true;
   std::vector<std::string> only;  ///< file stems to run (empty: all)
 };
 
@@ -78,7 +79,7 @@ struct Row {
 [[noreturn]] void usage(const std::string& error) {
   std::cerr << "error: " << error << "\nusage: run_maros_meszaros DIR [--out results.csv] [--time-limit SEC] "
             << "[--eps 1e-9] [--clp PATH_TO_CLP | --no-clp] [--only NAME,NAME,...] [--verbose]\n"
-            << "       [--no-exact-bound-steps] [--no-clean-bound-multipliers]\n";
+            << "       [--no-exact-bound-steps] [--no-clean-bound-multipliers] [--no-primal-reg-drop]\n";
   std::exit(2);
 }
 
@@ -98,6 +99,7 @@ Options parse_args(int argc, char** argv) {
       else if (a == "--no-clp") o.use_clp = false;
       else if (a == "--verbose") o.verbose = true;
       else if (a == "--no-exact-bound-steps") o.exact_bound_steps = false;
+      else if (a == "--no-primal-reg-drop") o.primal_reg_drop = false;
       else if (a == "--no-clean-bound-multipliers") o.clean_bound_multipliers = false;
       else if (a == "--only") {
         std::string list = value();
@@ -126,6 +128,7 @@ void solve_lcprelax(const lcprelax::io::QpsModel& model, const Options& opt, Row
   settings.verbose = opt.verbose;
   settings.exact_bound_steps = opt.exact_bound_steps;
   settings.clean_bound_multipliers = opt.clean_bound_multipliers;
+  if (!opt.primal_reg_drop) settings.primal_reg_drop = 0.0;
   try {
     lcprelax::QpSolver solver(settings);
     const auto t0 = std::chrono::steady_clock::now();

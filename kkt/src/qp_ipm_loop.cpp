@@ -18,6 +18,7 @@ constexpr int kFirstInfeasibilityCheck = 3;
 constexpr int kStallIterations = 15;  // no 10% gain in the worst scaled residual: stalled
 constexpr int kSteadyIterations = 5;  // ... unless the residuals still gain 10% within 5 iterations
 constexpr double kDivergence = 1e13;  // scaled iterate norm taken as divergence
+constexpr int kDualStalls = 2;  // full steps (α > 0.9) in a row that leave ≥ half the scaled r_d
 constexpr double kRefinementFailure = 1e-8;  // relative K0 residual after refinement taken as failure
 constexpr double kConservativeSigma = 0.1;   // least centring of the conservative second attempt
 
@@ -35,6 +36,9 @@ void QpSolver::Impl::run(QpInfo& info) {
   delta = settings.reg_dual;
   delta_rows = delta;
   may_drop_row_regularization = true;
+  primal_reg_dropped = false;
+  int dual_stalls = 0;
+  double last_alpha = 0.0, last_rd_norm = 0.0;
   const bool no_time = !has_warm_start && out_of_time(predicted_factor_seconds());
   if (no_time || !initial_point(info)) {
     info.status = no_time ? QpStatus::time_limit : QpStatus::numerical_error;
@@ -66,6 +70,14 @@ void QpSolver::Impl::run(QpInfo& info) {
     if (f.mg) rd.noalias() += f.Gt * zg;
     rp.noalias() = f.E * it.x;
     rp -= f.be;
+    {
+      // A full step removes the scaled dual residual (r_d ← (1 − α)r_d up to the step's K0
+      // residual); where it stays while α ≈ 1, the primal regularization ρ limits the step
+      // (QpSettings::primal_reg_drop).
+      const double rd_norm = rd.size() ? rd.lpNorm<Eigen::Infinity>() : 0.0;
+      dual_stalls = (have_step && last_alpha > 0.9 && rd_norm > 0.5 * last_rd_norm) ? dual_stalls + 1 : 0;
+      last_rd_norm = rd_norm;
+    }
     detail::unscale_solution(f, problem, it, result, w);
     res = detail::compute_residuals(problem, result, w);
     if (settings.clean_bound_multipliers && have_step && !has_warm_start && !within(res, settings, 1.0)) {
@@ -181,6 +193,16 @@ void QpSolver::Impl::run(QpInfo& info) {
       for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
       info.refinement_steps += newton_step();
     }
+    if (settings.primal_reg_drop > 0 && !primal_reg_dropped && rho > settings.primal_reg_drop &&
+        dual_stalls >= kDualStalls) {
+      // The dual residual survived kDualStalls full steps: lower ρ once per run (a failed
+      // factorization raises it again in factorize()) and redo the predictor.
+      primal_reg_dropped = true;
+      rho = settings.primal_reg_drop;
+      if (!factorize(info)) return give_up(QpStatus::numerical_error, "factorization failed");
+      for (detail::Side* s : it.sides()) s->rc = s->s.cwiseProduct(s->z);
+      info.refinement_steps += newton_step();
+    }
     const double a_aff = it.max_step();
     double mu_aff = 0.0;
     for (const detail::Side* s : it.sides())
@@ -204,6 +226,7 @@ void QpSolver::Impl::run(QpInfo& info) {
     tiny_steps = alpha < 1e-10 ? tiny_steps + 1 : 0;
     if (settings.verbose) std::fprintf(stderr, "     alpha %.3e  sigma %.2e  a_aff %.3e\n", alpha, sigma, a_aff);
 
+    last_alpha = alpha;
     it.x += alpha * dx;
     if (f.me) it.y += alpha * dy;
     for (detail::Side* s : it.sides()) {

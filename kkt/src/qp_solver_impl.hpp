@@ -123,6 +123,7 @@ struct QpSolver::Impl {
     return detail::KktSystem::resolve_backend(settings.kkt_backend, form, settings.dense_max_kkt);
   }
   bool may_drop_row_regularization = true;  ///< false once a factorization with δ_g = 0 failed
+  bool primal_reg_dropped = false;          ///< ρ lowered to QpSettings::primal_reg_drop in this run
   /// Second attempt after a stalled Mehrotra run (qp_ipm_loop.cpp): centring σ ≥
   /// kConservativeSigma and no second-order term in the corrector.
   bool conservative = false;
