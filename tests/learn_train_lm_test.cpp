@@ -4,7 +4,8 @@
 //   (−1.2, 1) a full-batch run stops converged at (1, 1) to 1e-8 within 40 epochs, where
 //   L-BFGS needs ~46 epochs to reach 1e-6 and Adam does not converge (learn_train_lbfgs_test);
 // - on an exponential fit over several samples with a log parameter (ξ = log a) and an
-//   identity one it recovers both to 1e-9, with θ bitwise the same for 1 and 2 threads;
+//   identity one it recovers both to 1e-9, with θ bitwise the same for 1 and 2 threads,
+//   with and without the geodesic acceleration (the chain rule at the displaced point);
 // - a run stopped after k epochs and resumed from its checkpoint ends bitwise where an
 //   uninterrupted run ends (the damping λ, ν is part of the optimizer state);
 // - a wrong Jacobian (sign flipped: every model step goes uphill) finds no decrease: θ stays
@@ -52,17 +53,21 @@ TEST(TrainLm, RosenbrockConvergesToTheMinimum) {
 }
 
 TEST(TrainLm, ExponentialFitIsExactAndTheSameForEveryThreadCount) {
-  ExponentialFit f;
-  ParameterSet one = exponential_start(), two = exponential_start();
-  TrainSettings ts = lm_settings(60);
-  ts.threads = 1;
-  const TrainResult r1 = train(f, one, all(9), {}, ts);
-  ts.threads = 2;
-  train(f, two, all(9), {}, ts);
-  EXPECT_TRUE(r1.converged) << r1.stop_reason;
-  EXPECT_NEAR(one[0].value, kA, 1e-9);
-  EXPECT_NEAR(one[1].value, kB, 1e-9);
-  EXPECT_EQ(one.values(), two.values());  // bitwise
+  for (const bool geodesic : {false, true}) {  // with and without the geodesic acceleration
+    SCOPED_TRACE(geodesic ? "geodesic acceleration" : "plain");
+    ExponentialFit f;
+    ParameterSet one = exponential_start(), two = exponential_start();
+    TrainSettings ts = lm_settings(60);
+    ts.optimizer.lm_geodesic_acceleration = geodesic;
+    ts.threads = 1;
+    const TrainResult r1 = train(f, one, all(9), {}, ts);
+    ts.threads = 2;
+    train(f, two, all(9), {}, ts);
+    EXPECT_TRUE(r1.converged) << r1.stop_reason;
+    EXPECT_NEAR(one[0].value, kA, 1e-9);
+    EXPECT_NEAR(one[1].value, kB, 1e-9);
+    EXPECT_EQ(one.values(), two.values());  // bitwise
+  }
 }
 
 TEST(TrainLm, ResumedRunEndsBitwiseWhereTheUninterruptedOneEnds) {
