@@ -13,6 +13,9 @@
 #               prior's bias; the first run's JSON is kept as <run>_<bodies>_seed<S>.stage1
 #               (at most $STAGE1_EPOCHS epochs, default 40: the biased minimum is only a
 #               start);
+#   convex_adam_lm the same in two runs: first Adam on the same loss for $ADAM_EPOCHS epochs
+#               (default 300; lr 0.02, decay 0.003: the CLI's defaults), then LM from its result
+#               (--init-from); the first run's JSON kept as <run>_<bodies>_seed<S>.stage1;
 #   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
 #               convex model's class: what it recovers there).
 # Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and
@@ -27,6 +30,7 @@ BODIES=${3:-30}
 RUNS=${4:-relaxed convex convex_lcp}
 PRIOR=${PRIOR:-1}
 STAGE1_EPOCHS=${STAGE1_EPOCHS:-40}
+ADAM_EPOCHS=${ADAM_EPOCHS:-300}
 R=bench/results
 OUT=$R/learn_scene_recovery
 mkdir -p "$OUT"
@@ -37,9 +41,9 @@ for seed in $SEEDS; do
       relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
       convex) args="--method convex $LM --epochs 200" ;;
       convex_geo) args="--method convex $LM --epochs 200 --lm-geodesic" ;;
-      convex_map) ;;
+      convex_map|convex_adam_lm) ;;
       convex_lcp) args="--method convex --data-model lcp $LM --epochs 200" ;;
-      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_map, convex_lcp)" >&2; exit 2 ;;
+      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_map, convex_adam_lm, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
     if [ "$run" = convex_map ]; then
@@ -47,6 +51,14 @@ for seed in $SEEDS; do
       # shellcheck disable=SC2086
       "$BUILD/apps/lcprelax" learn scene --method convex $LM --epochs "$STAGE1_EPOCHS" --prior-weight "$PRIOR" --bodies "$BODIES" \
         --seed "$seed" --json > "$OUT/${run}_${BODIES}_seed${seed}.stage1"
+      args="--method convex $LM --epochs 200 --init-from $OUT/${run}_${BODIES}_seed${seed}.stage1"
+    fi
+    if [ "$run" = convex_adam_lm ]; then
+      ADAM="--method convex --optimizer adam --phase1-deviation 0 --phase1-regularization 1e-6 --epochs $ADAM_EPOCHS"
+      echo "== learn scene $ADAM --bodies $BODIES --seed $seed" >&2
+      # shellcheck disable=SC2086
+      "$BUILD/apps/lcprelax" learn scene $ADAM --bodies "$BODIES" --seed "$seed" --json \
+        > "$OUT/${run}_${BODIES}_seed${seed}.stage1"
       args="--method convex $LM --epochs 200 --init-from $OUT/${run}_${BODIES}_seed${seed}.stage1"
     fi
     echo "== learn scene $args --bodies $BODIES --seed $seed" >&2
@@ -64,7 +76,7 @@ for f in sorted(glob.glob(os.path.join(sys.argv[1], "*.json"))):
         v = [x for k, x in e.items() if (tag in k if tag == ".vertex" else k.endswith(tag))]
         return "%.4g" % max(v) if v else ""
     epochs, seconds = j["epochs"], j["seconds"]
-    if os.path.exists(f[:-5] + ".stage1"):  # convex_map: both runs' epochs and time
+    if os.path.exists(f[:-5] + ".stage1"):  # two-stage runs: both runs' epochs and time
         s1 = json.load(open(f[:-5] + ".stage1"))
         epochs, seconds = epochs + s1["epochs"], seconds + s1["seconds"]
     print(",".join([os.path.basename(f)[:-5], j["method"], str(epochs), j["stop_reason"].replace(",", ";"),

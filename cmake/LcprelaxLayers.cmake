@@ -26,6 +26,11 @@ function(lcprelax_add_layer layer)
   list(TRANSFORM uses PREPEND lcprelax_)
   if(ARG_SOURCES)
     add_library(${target} STATIC ${ARG_SOURCES})
+    if(LCPRELAX_UNITY_BUILD)
+      # Unity batches share one translation unit: file-local helpers must have unique names
+      # (shared ones live in a header).
+      set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+    endif()
     set(scope PUBLIC)
     target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:lcprelax_warnings>)
   else()

@@ -1,5 +1,6 @@
 // Polygon validation and mass properties (see contact/polygon.hpp for the formulas).
 #include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <algorithm>
@@ -11,7 +12,6 @@ namespace {
 
 constexpr double kRelativeTolerance = 1e-9;
 constexpr double kCentredTolerance = 1e-12;  // recentre(): |C| ≤ 1e-12·L counts as 0
-constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 

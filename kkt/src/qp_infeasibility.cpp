@@ -9,20 +9,12 @@
 // max(eps, 1e-6) (strict sign of the support term), in the scaled space, where the
 // diverging iterates of an infeasible problem approach such certificates.
 #include "qp_solver_impl.hpp"
+#include "vector_norms.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace lcprelax::detail {
-namespace {
-
-template <class V>
-double inf_norm(const Eigen::MatrixBase<V>& v) {
-  return v.size() ? v.template lpNorm<Eigen::Infinity>() : 0.0;
-}
-
-}  // namespace
-
 bool primal_infeasibility_certificate(const StandardForm& f, const QpProblem& p, const Vector& y, const Iterate& it,
                                       bool use_steps, double eps, QpResult& r, Workspace& w) {
   // The norm and the support term first, from the sides as they are (no copies: this runs

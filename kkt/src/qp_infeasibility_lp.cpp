@@ -1,5 +1,6 @@
 // Auxiliary infeasibility LPs (see qp_infeasibility_lp.hpp).
 #include "qp_infeasibility_lp.hpp"
+#include "vector_norms.hpp"
 
 #include <lcprelax/kkt/qp_solver.hpp>
 
@@ -24,8 +25,6 @@ QpSettings auxiliary_settings(const QpSettings& s) {
 bool solved(const QpResult& r) {
   return has_solution(r.info.status);
 }
-
-double inf_norm(const Vector& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
 }  // namespace
 

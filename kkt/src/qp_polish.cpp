@@ -1,6 +1,7 @@
 // Solution polishing on the guessed active set (method in qp_polish.hpp) and
 // QpSolver::Impl::polish, which accepts or rejects the polished point.
 #include "qp_polish.hpp"
+#include "vector_norms.hpp"
 
 #include <cstdio>
 
@@ -16,11 +17,6 @@
 namespace lcprelax {
 namespace detail {
 namespace {
-
-template <class V>
-double inf_norm(const Eigen::MatrixBase<V>& v) {
-  return v.size() ? v.template lpNorm<Eigen::Infinity>() : 0.0;
-}
 
 // Active side per kept row of G̃ (rows) and per variable (bounds): 0 inactive, −1 lower,
 // +1 upper. Fixed variables (Ẽ rows) have no side here.

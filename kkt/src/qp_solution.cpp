@@ -2,18 +2,13 @@
 // (definitions in qp_settings.hpp; the duality gap follows qpbenchmark's definition), on
 // the solver's presized work vectors.
 #include "qp_solver_impl.hpp"
+#include "vector_norms.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace lcprelax::detail {
 namespace {
-
-// ∞-norm of a vector or a vector expression (evaluated lazily, no temporary).
-template <class V>
-double inf_norm(const Eigen::MatrixBase<V>& v) {
-  return v.size() ? v.template lpNorm<Eigen::Infinity>() : 0.0;
-}
 
 long double long_dot(const Vector& a, const Vector& b) {
   long double s = 0.0L;

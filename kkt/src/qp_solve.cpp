@@ -5,6 +5,8 @@
 #include "qp_solver_impl.hpp"
 
 #include <algorithm>
+#include <lcprelax/core/stopwatch.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -14,7 +16,6 @@ namespace lcprelax {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 }  // namespace
 

@@ -7,6 +7,8 @@
 #include <lcprelax/sparse/dense_ldlt.hpp>
 
 #include <algorithm>
+#include <lcprelax/core/stopwatch.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,7 +19,6 @@ namespace lcprelax {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 }  // namespace
 

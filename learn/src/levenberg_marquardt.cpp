@@ -9,8 +9,8 @@
 namespace lcprelax::learn::detail {
 namespace {
 
-constexpr double kMaxFreeStep = 1.0;
-constexpr int kMaxTrials = 30;
+constexpr double kLmMaxFreeStep = 1.0;  // largest change of one free coordinate per trial
+constexpr int kLmMaxTrials = 30;
 constexpr double kAcceptRatio = 1e-4;
 constexpr double kMinRelativeDecrease = 1e-14;
 constexpr double kInitialDamping = 1e-3;
@@ -122,13 +122,13 @@ LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::v
   double lambda = kInitialDamping * max_diag, nu = 2.0;
   optimizer.lm_damping(lambda, nu);
   const Vector xi0 = theta.free();
-  for (int trial = 0; trial < kMaxTrials; ++trial) {
+  for (int trial = 0; trial < kLmMaxTrials; ++trial) {
     DenseMatrix K = ne.A;
     K.diagonal() += lambda * D;
     const Eigen::LLT<DenseMatrix> llt(K);
     Vector delta = llt.info() == Eigen::Success ? Vector(llt.solve(-ne.b)) : Vector(Vector::Zero(n));
     const double longest_velocity = delta.lpNorm<Eigen::Infinity>();
-    if (longest_velocity > kMaxFreeStep) delta *= kMaxFreeStep / longest_velocity;
+    if (longest_velocity > kLmMaxFreeStep) delta *= kLmMaxFreeStep / longest_velocity;
     bool too_curved = false;
     if (geodesic && llt.info() == Eigen::Success && delta.allFinite()) {
       // Geodesic acceleration (Transtrum & Sethna 2012, §III): a = −(A + λD)⁻¹ J̃ᵀ r_vv, the
@@ -143,7 +143,7 @@ LmIteration lm_iteration(Objective& objective, ParameterSet& theta, const std::v
       }
     }
     const double longest = delta.lpNorm<Eigen::Infinity>();
-    if (longest > kMaxFreeStep) delta *= kMaxFreeStep / longest;
+    if (longest > kLmMaxFreeStep) delta *= kLmMaxFreeStep / longest;
     const double predicted = -(2.0 * delta.dot(ne.b) + delta.dot(ne.A * delta));
     bool accept = false;
     double rho = 0.0;

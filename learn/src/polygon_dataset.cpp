@@ -1,6 +1,7 @@
 // Transitions of a polygon on the ground: generation and CSV loading (polygon_dataset.hpp).
 #include "random_draws.hpp"
 #include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/learn/polygon_dataset.hpp>
 #include <lcprelax/learn/polygon_scene.hpp>
 #include <lcprelax/models/simulator.hpp>
@@ -16,7 +17,6 @@ namespace {
 using detail::normal;
 using detail::uniform;
 
-constexpr double kPi = 3.14159265358979323846;
 
 bool nonneg(double x) { return std::isfinite(x) && x >= 0; }
 

@@ -1,5 +1,6 @@
 // Parameters of a polygon on a ground half-plane (polygon_params.hpp).
 #include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/learn/polygon_params.hpp>
 #include <lcprelax/core/errors.hpp>
 
@@ -9,7 +10,6 @@
 namespace lcprelax::learn {
 namespace {
 
-constexpr double kHalfPi = 1.5707963267948966;
 
 std::string vertex_name(Index i, char axis) { return "vertex" + std::to_string(i) + "." + axis; }
 

@@ -1,14 +1,11 @@
 // The polygon on the ground as a one-body scene (polygon_scene.hpp).
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/learn/polygon_scene.hpp>
 
 #include <cmath>
 
 namespace lcprelax::learn {
-namespace {
-constexpr double kHalfPi = 1.57079632679489661923;
-}  // namespace
-
 Scene polygon_scene(const PolygonModel& model, double dt, const Vec2& gravity, double margin) {
   Scene scene;
   RigidBody body;

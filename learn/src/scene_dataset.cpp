@@ -2,6 +2,7 @@
 // (scene_dataset.hpp states the rules).
 #include "random_draws.hpp"
 #include <lcprelax/learn/scene_dataset.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/learn/scene_params.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
@@ -19,7 +20,6 @@ namespace {
 using detail::normal;
 using detail::uniform;
 
-constexpr double kPi = 3.14159265358979323846;
 
 bool nonneg(double x) { return std::isfinite(x) && x >= 0; }
 

@@ -2,6 +2,7 @@
 // (scene_dataset.hpp: make_learning_pile states the layout and the class table).
 #include "random_draws.hpp"
 #include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/learn/scene_dataset.hpp>
 #include <lcprelax/core/errors.hpp>
 
@@ -15,7 +16,6 @@ namespace {
 
 using detail::uniform;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxBodies = 100000;
 constexpr int kClasses = 4;
 constexpr double kCellPerRadius = 2.2;  // grid cell side / largest circumradius

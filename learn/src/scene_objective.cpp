@@ -6,15 +6,13 @@
 #include "proximal_centers.hpp"
 
 #include <algorithm>
+#include <lcprelax/core/stopwatch.hpp>
+
 #include <chrono>
 #include <exception>
 
 namespace lcprelax::learn {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 // The relaxed loss of one island, lifted (step_loss_relaxed.hpp): the QP's assembly, the
 // workspace that reuses the QpSolver's analysis, and the envelope-theorem gradient.
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/learn/step_loss_hard.hpp>
 #include <lcprelax/learn/step_loss_relaxed.hpp>
@@ -14,7 +15,6 @@
 namespace lcprelax::learn {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Dynamic bodies (local index) of each contact, from Jn's row pattern.
 std::vector<std::vector<int>> contact_bodies(const ContactSystem& s) {

@@ -1,6 +1,7 @@
 // Stick/slip fragility: derived and measured thresholds (stick_slip_fragility.hpp;
 // derivation in docs/structure.md).
 #include <lcprelax/learn/stick_slip_fragility.hpp>
+#include <lcprelax/core/math_constants.hpp>
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lemke.hpp>
@@ -13,7 +14,6 @@
 namespace lcprelax::learn {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool has_normal(const StickCase& c) { return c.row_n >= 0; }

@@ -17,8 +17,6 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
-bool dynamic_body(const World& w, int b) { return b >= 0 && !w.bodies[b].is_static; }
-
 // Appends the 3 entries of a row for body block k: direction d at lever arm r.
 void add_row(std::vector<Triplet>& t, Index row, Index block, const Vec2& d, const Vec2& r, double sign) {
   t.emplace_back(row, 3 * block, sign * d.x());
@@ -34,10 +32,10 @@ std::vector<Island> find_islands(const World& world, const std::vector<Contact>&
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<bool> touched(nb, false);
   for (const Contact& c : contacts) {
-    if (!dynamic_body(world, c.body_a))
+    if (!world.is_dynamic(c.body_a))
       throw InputError("contact with body_a = " + std::to_string(c.body_a) + " that is not a dynamic body");
     touched[c.body_a] = true;
-    if (dynamic_body(world, c.body_b)) {
+    if (world.is_dynamic(c.body_b)) {
       touched[c.body_b] = true;
       const int ra = find_root(parent, c.body_a), rb = find_root(parent, c.body_b);
       if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
@@ -88,7 +86,7 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
     s.phi(i) = c.gap;
     const Vec2 n = c.normal, t(-n.y(), n.x());
     const Vec2 ra = c.point - world.bodies[c.body_a].pose.head<2>();
-    const bool b_dynamic = dynamic_body(world, c.body_b);
+    const bool b_dynamic = world.is_dynamic(c.body_b);
     const Vec2 rb = b_dynamic ? Vec2(c.point - world.bodies[c.body_b].pose.head<2>()) : Vec2::Zero();
     add_row(tn, i, block[c.body_a], n, ra, 1.0);
     if (b_dynamic) add_row(tn, i, block[c.body_b], n, rb, -1.0);

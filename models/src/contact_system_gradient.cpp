@@ -24,8 +24,6 @@ using Derivatives = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxDirections, 
 using AD = Eigen::AutoDiffScalar<Derivatives>;
 using Vec2AD = Vec2Of<AD>;
 
-bool dynamic_body(const World& w, int b) { return b >= 0 && !w.bodies[b].is_static; }
-
 // World vertices x + R(θ) v of a body as functions of its body-frame vertices, which are
 // the directions first, first + 1, ... (2 per vertex) of `directions`. The same operations
 // as make_shape (convex_shape.cpp), so values agree bit for bit.
@@ -159,7 +157,7 @@ void pull_back_contact(const World& world, const Contact& c, Index i, Index fric
   AD share = ct.phi(i) * lc.geo.gap;
   share += row_share(ct.Jn, i, block[c.body_a], n, ra);
   if (friction_row >= 0) share += row_share(ct.Jt, friction_row, block[c.body_a], t, ra);
-  if (dynamic_body(world, c.body_b)) {
+  if (world.is_dynamic(c.body_b)) {
     const Vec2AD rb = lc.geo.point - world.bodies[c.body_b].pose.head<2>().cast<AD>();
     share -= row_share(ct.Jn, i, block[c.body_b], n, rb);
     if (friction_row >= 0) share -= row_share(ct.Jt, friction_row, block[c.body_b], t, rb);
@@ -232,7 +230,7 @@ void accumulate_world_gradient(const World& world, const std::vector<Contact>& c
   }
   for (Index i = 0; i < s.num_contacts(); ++i) {
     const Contact& c = contacts[s.contacts[i]];
-    if (block[c.body_a] < 0 || (dynamic_body(world, c.body_b) && block[c.body_b] < 0))
+    if (block[c.body_a] < 0 || (world.is_dynamic(c.body_b) && block[c.body_b] < 0))
       throw InputError("accumulate_world_gradient: s.contacts[" + std::to_string(i) + "]: a body is not in the island");
     pull_back_contact(world, contacts[s.contacts[i]], i, friction_row[static_cast<std::size_t>(i)], block, ct, g);
   }
@@ -262,7 +260,7 @@ ContactSystem contact_system_tangent(const World& world, const std::vector<Conta
   for (Index f = 0; f < s.num_friction(); ++f) friction_row[static_cast<std::size_t>(s.friction_rows[f])] = f;
   for (Index i = 0; i < s.num_contacts(); ++i) {
     const Contact& c = contacts[s.contacts[i]];
-    if (block[c.body_a] < 0 || (dynamic_body(world, c.body_b) && block[c.body_b] < 0))
+    if (block[c.body_a] < 0 || (world.is_dynamic(c.body_b) && block[c.body_b] < 0))
       throw InputError("contact_system_tangent: s.contacts[" + std::to_string(i) + "]: a body is not in the island");
     const LocalContact lc = local_geometry(world, c);
     const Derivatives dir = gather(c, lc.na, lc.directions, direction);
@@ -273,7 +271,7 @@ ContactSystem contact_system_tangent(const World& world, const std::vector<Conta
     const Vec2AD ra = lc.geo.point - world.bodies[c.body_a].pose.head<2>().cast<AD>();
     push_row(out.Jn, i, block[c.body_a], n, ra, 1.0, dir);
     if (fr >= 0) push_row(out.Jt, fr, block[c.body_a], t, ra, 1.0, dir);
-    if (dynamic_body(world, c.body_b)) {
+    if (world.is_dynamic(c.body_b)) {
       const Vec2AD rb = lc.geo.point - world.bodies[c.body_b].pose.head<2>().cast<AD>();
       push_row(out.Jn, i, block[c.body_b], n, rb, -1.0, dir);
       if (fr >= 0) push_row(out.Jt, fr, block[c.body_b], t, rb, -1.0, dir);

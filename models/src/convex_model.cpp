@@ -6,6 +6,8 @@
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/convex_solver_cache.hpp>
 
+#include <lcprelax/core/stopwatch.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -21,10 +23,6 @@ namespace {
 // dynamics_rest_test.cpp: statically indeterminate, W singular, every normal row active)
 // leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
 constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Sets `qp` up for `p`, or updates it in place when its last problem had p's pattern.
 void prepare(QpSolver& qp, const QpProblem& p, ConvexSolverCache& cache) {

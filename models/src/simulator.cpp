@@ -6,6 +6,8 @@
 #include <lcprelax/core/errors.hpp>
 
 #include <algorithm>
+#include <lcprelax/core/stopwatch.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -37,10 +39,6 @@ constexpr Index kRedundantContactsPerDof = 4;
 
 bool redundant_island(const ContactSystem& s) {
   return s.num_contacts() > kRedundantContactsPerDof * s.num_dofs();
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 struct IslandWork {

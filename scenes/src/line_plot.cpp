@@ -2,6 +2,8 @@
 #include <lcprelax/scenes/line_plot.hpp>
 #include <lcprelax/core/errors.hpp>
 
+#include "cairo_output.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -19,18 +21,8 @@ namespace lcprelax {
 
 namespace {
 
-enum class Format { png, svg };
-
-Format format_of(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".png") return Format::png;
-  if (ext == ".svg") return Format::svg;
-  throw InputError("write_line_plot: " + path + ": the file name must end in .svg or .png");
-}
-
 void validate(const std::string& path, const std::vector<LineSeries>& series, const LinePlotOptions& o) {
-  format_of(path);
+  detail::image_format_of(path, "write_line_plot");
   if (o.width_px < 64 || o.width_px > 16384 || o.height_px < 64 || o.height_px > 16384)
     throw InputError("write_line_plot: width and height must be in [64, 16384] pixels");
   for (std::size_t i = 0; i < series.size(); ++i)
@@ -249,36 +241,24 @@ void draw(cairo_t* cr, const std::vector<LineSeries>& series, const LinePlotOpti
   }
 }
 
-void check(cairo_status_t status, const std::string& path) {
-  if (status != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("write_line_plot: " + path + ": " + cairo_status_to_string(status));
-}
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
 }  // namespace
 
 void write_line_plot(const std::string& path, const std::vector<LineSeries>& series, const LinePlotOptions& options) {
   validate(path, series, options);
-  const Format format = format_of(path);
-  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
-      format == Format::png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, options.width_px, options.height_px)
+  const detail::ImageFormat format = detail::image_format_of(path, "write_line_plot");
+  std::unique_ptr<cairo_surface_t, detail::CairoSurfaceDeleter> surface(
+      format == detail::ImageFormat::png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, options.width_px, options.height_px)
                             : cairo_svg_surface_create(path.c_str(), options.width_px, options.height_px));
-  check(cairo_surface_status(surface.get()), path);
-  if (format == Format::svg) cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
+  detail::check_cairo(cairo_surface_status(surface.get()), path, "write_line_plot");
+  if (format == detail::ImageFormat::svg) cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
   {
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    std::unique_ptr<cairo_t, detail::CairoContextDeleter> cr(cairo_create(surface.get()));
     draw(cr.get(), series, options);
-    check(cairo_status(cr.get()), path);
+    detail::check_cairo(cairo_status(cr.get()), path, "write_line_plot");
   }
-  if (format == Format::png) check(cairo_surface_write_to_png(surface.get(), path.c_str()), path);
+  if (format == detail::ImageFormat::png) detail::check_cairo(cairo_surface_write_to_png(surface.get(), path.c_str()), path, "write_line_plot");
   cairo_surface_finish(surface.get());
-  check(cairo_surface_status(surface.get()), path);
+  detail::check_cairo(cairo_surface_status(surface.get()), path, "write_line_plot");
 }
 
 #endif

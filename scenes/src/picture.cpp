@@ -3,6 +3,8 @@
 #include <lcprelax/core/atomic_file.hpp>
 #include <lcprelax/core/errors.hpp>
 
+#include "cairo_output.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -32,16 +34,6 @@ std::string write_frame(const std::string&, int, const World&, const std::vector
 #else
 
 namespace {
-
-enum class Format { png, svg };
-
-Format format_of(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".png") return Format::png;
-  if (ext == ".svg") return Format::svg;
-  throw InputError("write_picture: " + path + ": the file name must end in .svg or .png");
-}
 
 // World point of body vertex v: p = (x, y) + R(θ) v.
 Vec2 world_point(const RigidBody& b, const Vec2& v) {
@@ -236,49 +228,37 @@ void draw(cairo_t* cr, const View& view, const World& world, const std::vector<C
   }
 }
 
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
-
 // cairo_write_func_t appending to a std::string.
 cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
   return CAIRO_STATUS_SUCCESS;
 }
 
-void check(cairo_status_t status, const std::string& path) {
-  if (status != CAIRO_STATUS_SUCCESS)
-    throw std::runtime_error("write_picture: " + path + ": " + cairo_status_to_string(status));
-}
-
 }  // namespace
 
 void write_picture(const std::string& path, const World& world, const std::vector<Contact>& contacts,
                    const PictureOptions& options) {
-  const Format format = format_of(path);
+  const detail::ImageFormat format = detail::image_format_of(path, "write_picture");
   check_input(world, contacts, options);
   const View view = fit_view(world, options.width_px);
   // Both formats are rendered into memory and the file is then replaced atomically
   // (core/atomic_file.hpp): a run killed while writing frames never leaves a truncated one.
   std::string bytes;
-  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
-      format == Format::png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, view.width, view.height)
+  std::unique_ptr<cairo_surface_t, detail::CairoSurfaceDeleter> surface(
+      format == detail::ImageFormat::png ? cairo_image_surface_create(CAIRO_FORMAT_ARGB32, view.width, view.height)
                             : cairo_svg_surface_create_for_stream(append_bytes, &bytes, view.width, view.height));
-  check(cairo_surface_status(surface.get()), path);
+  detail::check_cairo(cairo_surface_status(surface.get()), path, "write_picture");
 #if CAIRO_VERSION >= CAIRO_VERSION_ENCODE(1, 16, 0)
-  if (format == Format::svg) cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
+  if (format == detail::ImageFormat::svg) cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
 #endif
   {
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    std::unique_ptr<cairo_t, detail::CairoContextDeleter> cr(cairo_create(surface.get()));
     draw(cr.get(), view, world, contacts, options);
-    check(cairo_status(cr.get()), path);
+    detail::check_cairo(cairo_status(cr.get()), path, "write_picture");
   }
-  if (format == Format::png) check(cairo_surface_write_to_png_stream(surface.get(), append_bytes, &bytes), path);
+  if (format == detail::ImageFormat::png) detail::check_cairo(cairo_surface_write_to_png_stream(surface.get(), append_bytes, &bytes), path, "write_picture");
   cairo_surface_finish(surface.get());  // flushes the SVG stream
-  check(cairo_surface_status(surface.get()), path);
+  detail::check_cairo(cairo_surface_status(surface.get()), path, "write_picture");
   write_file_atomically(path, bytes);
 }
 

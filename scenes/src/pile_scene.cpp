@@ -1,6 +1,7 @@
 // Generated scenes: random polygon pile, box stack, box pyramid, box on an incline
 // (scenes/pile_scene.hpp documents the layouts).
 #include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
 #include <lcprelax/core/errors.hpp>
 
@@ -15,7 +16,6 @@
 namespace lcprelax {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxPileBodies = 1000000;
 constexpr double kMinSize = 1e-6, kMaxSize = 1e6;  // m, circumradius range
 constexpr double kCellPerSize = 2.2;      // grid cell side / max_size: discs 0.2·max_size apart
@@ -31,8 +31,8 @@ void require(bool ok, const std::string& subject, const std::string& rule, doubl
   throw InputError(os.str());
 }
 
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
-bool nonnegative(double v) { return std::isfinite(v) && v >= 0.0; }
+bool is_finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
+bool is_finite_nonnegative(double v) { return std::isfinite(v) && v >= 0.0; }
 
 // Uniform draws from the raw 64-bit output: the top 53 bits give a double in [0, 1).
 class Draw {
@@ -95,8 +95,8 @@ RigidBody box(double size, double density, const Vec3& pose) {
 void check_boxes(const char* function, const char* count_name, int count, double size, double mu) {
   const std::string f = function;
   require(count >= 1, f + ": " + count_name, ">= 1", count);
-  require(positive(size), f + ": size", "finite and > 0", size);
-  require(nonnegative(mu), f + ": mu", "finite and >= 0", mu);
+  require(is_finite_positive(size), f + ": size", "finite and > 0", size);
+  require(is_finite_nonnegative(mu), f + ": mu", "finite and >= 0", mu);
 }
 
 }  // namespace
@@ -113,8 +113,8 @@ void check_pile_options(const PileOptions& o) {
   require(o.max_vertices >= o.min_vertices && o.max_vertices <= kMaxPolygonVertices,
           "PileOptions.max_vertices", "in [min_vertices, " + std::to_string(kMaxPolygonVertices) + "]",
           o.max_vertices);
-  require(positive(o.density), "PileOptions.density", "finite and > 0", o.density);
-  require(nonnegative(o.mu), "PileOptions.mu", "finite and >= 0", o.mu);
+  require(is_finite_positive(o.density), "PileOptions.density", "finite and > 0", o.density);
+  require(is_finite_nonnegative(o.mu), "PileOptions.mu", "finite and >= 0", o.mu);
   const double cell = kCellPerSize * o.max_size;
   // Between one cell and one cell per body (wider containers only lose precision).
   const double widest = cell * o.bodies;
@@ -123,7 +123,7 @@ void check_pile_options(const PileOptions& o) {
           "0 (automatic) or in [2.2·max_size, bodies·2.2·max_size] = [" + std::to_string(cell) + ", " +
               std::to_string(widest) + "] m",
           o.container_width);
-  require(positive(o.dt), "PileOptions.dt", "finite and > 0", o.dt);
+  require(is_finite_positive(o.dt), "PileOptions.dt", "finite and > 0", o.dt);
   require(o.model == ContactModel::lcp || o.model == ContactModel::convex, "PileOptions.model",
           "lcp or convex", static_cast<double>(o.model));
 }
@@ -186,9 +186,9 @@ Scene make_pyramid_scene(int base, double size, double mu) {
 Scene make_incline_scene(double angle, double mu, double size, double density) {
   require(std::isfinite(angle) && std::abs(angle) < 0.5 * kPi, "make_incline_scene: angle",
           "in (-pi/2, pi/2)", angle);
-  require(nonnegative(mu), "make_incline_scene: mu", "finite and >= 0", mu);
-  require(positive(size), "make_incline_scene: size", "finite and > 0", size);
-  require(positive(density), "make_incline_scene: density", "finite and > 0", density);
+  require(is_finite_nonnegative(mu), "make_incline_scene: mu", "finite and >= 0", mu);
+  require(is_finite_positive(size), "make_incline_scene: size", "finite and > 0", size);
+  require(is_finite_positive(density), "make_incline_scene: density", "finite and > 0", density);
   Scene scene = base_scene(mu, "box on an incline");
   const Vec2 normal(-std::sin(angle), std::cos(angle));
   scene.world.half_planes[0].normal = normal;

@@ -10,12 +10,6 @@ struct CholmodLdlt::Impl {
   std::unique_ptr<detail::CholmodEngine> engine;
 };
 
-namespace {
-FactorResult moved_from() {
-  return detail::make_result(FactorStatus::not_analyzed, "object was moved from");
-}
-}  // namespace
-
 CholmodLdlt::CholmodLdlt(double dynamic_regularization, CholmodOrdering ordering)
     : impl_(std::make_unique<Impl>(Impl{std::make_unique<detail::CholmodEngine>(
           detail::CholmodKind::simplicial_ldlt, dynamic_regularization, ordering)})) {}
@@ -25,19 +19,19 @@ CholmodLdlt::CholmodLdlt(CholmodLdlt&&) noexcept = default;
 CholmodLdlt& CholmodLdlt::operator=(CholmodLdlt&&) noexcept = default;
 
 FactorResult CholmodLdlt::analyze(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   return impl_->engine->analyze(A);
 }
 
 FactorResult CholmodLdlt::factorize(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   FactorResult r = impl_->engine->factorize(A);
   if (r.ok()) ++numeric_factorizations_;
   return r;
 }
 
 FactorResult CholmodLdlt::solve(Eigen::Ref<DenseMatrix> B) const {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   return impl_->engine->solve(B);
 }
 

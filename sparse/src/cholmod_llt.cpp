@@ -11,12 +11,6 @@ struct CholmodLlt::Impl {
   std::unique_ptr<detail::CholmodEngine> engine;
 };
 
-namespace {
-FactorResult moved_from() {
-  return detail::make_result(FactorStatus::not_analyzed, "object was moved from");
-}
-}  // namespace
-
 CholmodLlt::CholmodLlt(CholmodOrdering ordering)
     : impl_(std::make_unique<Impl>(Impl{std::make_unique<detail::CholmodEngine>(
           detail::CholmodKind::supernodal_llt, 0.0, ordering)})) {}
@@ -26,19 +20,19 @@ CholmodLlt::CholmodLlt(CholmodLlt&&) noexcept = default;
 CholmodLlt& CholmodLlt::operator=(CholmodLlt&&) noexcept = default;
 
 FactorResult CholmodLlt::analyze(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   return impl_->engine->analyze(A);
 }
 
 FactorResult CholmodLlt::factorize(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   FactorResult r = impl_->engine->factorize(A);
   if (r.ok()) ++numeric_factorizations_;
   return r;
 }
 
 FactorResult CholmodLlt::solve(Eigen::Ref<DenseMatrix> B) const {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   return impl_->engine->solve(B);
 }
 

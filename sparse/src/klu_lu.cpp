@@ -100,9 +100,6 @@ struct KluLu::Impl {
 };
 
 namespace {
-FactorResult moved_from() {
-  return make_result(FactorStatus::not_analyzed, "object was moved from");
-}
 Index* ptr(const Index* p) { return const_cast<Index*>(p); }
 double* ptr(const double* p) { return const_cast<double*>(p); }
 }  // namespace
@@ -113,7 +110,7 @@ KluLu::KluLu(KluLu&&) noexcept = default;
 KluLu& KluLu::operator=(KluLu&&) noexcept = default;
 
 FactorResult KluLu::analyze(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   Impl& m = *impl_;
   m.release();
   if (auto r = detail::check_square(A); !r.ok()) return r;
@@ -131,7 +128,7 @@ FactorResult KluLu::analyze(const SparseMatrix& A) {
 }
 
 FactorResult KluLu::factorize(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   Impl& m = *impl_;
   if (!m.analysed) {
     return make_result(FactorStatus::not_analyzed, "factorize() before analyze()");
@@ -214,7 +211,7 @@ bool KluLu::extract(Factors& out) const {
 }
 
 FactorResult KluLu::refactorize(const SparseMatrix& A) {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   Impl& m = *impl_;
   if (!m.numeric && !(m.analysed && m.n == 0)) {
     return make_result(FactorStatus::not_analyzed,
@@ -237,12 +234,12 @@ FactorResult KluLu::refactorize(const SparseMatrix& A) {
 }
 
 FactorResult KluLu::solve(Eigen::Ref<DenseMatrix> B) const {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   return impl_->solve(B, false);
 }
 
 FactorResult KluLu::solve_transposed(Eigen::Ref<DenseMatrix> B) const {
-  if (!impl_) return moved_from();
+  if (!impl_) return detail::moved_from_result();
   return impl_->solve(B, true);
 }
 

@@ -57,6 +57,8 @@ FactorResult make_result(FactorStatus status, std::string message, Index pivot) 
   return r;
 }
 
+FactorResult moved_from_result() { return make_result(FactorStatus::not_analyzed, "object was moved from"); }
+
 FactorResult check_square(const SparseMatrix& A) {
   if (A.rows() != A.cols()) {
     return make_result(FactorStatus::invalid_input,

@@ -43,6 +43,8 @@ class Pattern {
 };
 
 FactorResult make_result(FactorStatus status, std::string message, Index pivot = -1);
+/// not_analyzed, "object was moved from": what every method of a moved-from factorization returns.
+FactorResult moved_from_result();
 /// ok, or invalid_input when A is not square.
 FactorResult check_square(const SparseMatrix& A);
 /// ok, or invalid_input naming the first NaN/Inf entry of A (A must be compressed).

@@ -71,6 +71,9 @@ struct World {
   std::vector<Segment> segments;
   Vec2 gravity{0.0, -9.81};  ///< m/s²
   FrictionTable friction;
+
+  /// Whether body index b names a moving body: b ≥ 0 (−1 is a static shape) and not static.
+  bool is_dynamic(int b) const { return b >= 0 && !bodies[b].is_static; }
 };
 
 /// One contact point between a dynamic body a and a body b (dynamic, static, or a static
