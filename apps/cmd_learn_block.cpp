@@ -252,7 +252,9 @@ int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
               << j["stop_reason"].get<std::string>() << "), " << seconds << " s";
     if (o.epochs == 0) std::cout << ", gradient " << j["gradient"].dump();
     std::cout << '\n';
-    if (failed > 0) std::cout << failed << " failed sample solves (" << final_eval.first_failure << ")\n";
+    if (failed > 0)
+      std::cout << failed << " failed sample solves ("
+                << (final_eval.first_failure.empty() ? result.first_failure : final_eval.first_failure) << ")\n";
   }
   return failed > 0 ? kExitSolveFailed : kExitSuccess;
 }
