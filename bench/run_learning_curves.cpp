@@ -18,7 +18,11 @@
 //                learned LCP (learn::block_param_predict), v⁺ the exact step;
 //   mode_error = fraction of held-out transitions whose stick/slip mode (γ = 0 or not) the
 //                learned LCP predicts wrongly; a prediction Lemke cannot make counts as a
-//                wrong mode and is left out of test_error (column failed).
+//                wrong mode and is left out of test_error (column failed);
+//   train_failed = sample evaluations that failed during training (e.g. a relaxed QP made
+//                infeasible by an elementwise M at a line-search trial point; skipped);
+//   stick_speed  = RMS of v̂⁺ over the held-out transitions that truly stick, in units of
+//                μmg/m (how far from "stuck" a model that slides there predicts).
 // The text summary gives per P and N the median and largest test_error and the mean
 // mode_error over the seeds, then per P the smallest N whose median test_error ≤ 1% and the
 // mode error at N = 1,000. Seconds are wall time on a shared machine (noisy).
@@ -47,7 +51,8 @@ namespace {
 
 struct RunResult {
   double test_error = 0.0, mode_error = 0.0, train_loss = 0.0, seconds = 0.0;
-  int failed = 0, epochs = 0;
+  double stick_speed = 0.0;  // RMS of v̂⁺ over the truly sticking held-out transitions, / (μmg/m)
+  int failed = 0, epochs = 0, train_failed = 0;
   bool converged = false;
 };
 
@@ -74,10 +79,12 @@ RunResult run(BlockParam param, BlockMethod method, const BlockDataset& train_da
   RunResult r;
   r.epochs = static_cast<int>(tr.history.size());
   r.converged = tr.converged;
+  r.train_failed = tr.failed;
   r.train_loss = evaluate_mean(*objective, theta, all, threads).loss;
   LemkeSolver solver;
   double err2 = 0.0, ref2 = 0.0;
-  int wrong = 0;
+  int wrong = 0, sticking = 0;
+  double stick2 = 0.0;
   for (const BlockTransition& x : test.samples) {
     const double exact = block1d_next_velocity(truth, x.v, x.u, block1d_exact_impulse(truth, x.v, x.u));
     const bool stick = std::abs(x.v + x.u / truth.mass) <= truth.mu * truth.mg / truth.mass;
@@ -90,9 +97,14 @@ RunResult run(BlockParam param, BlockMethod method, const BlockDataset& train_da
     err2 += (p.v_next - exact) * (p.v_next - exact);
     ref2 += exact * exact;
     if (p.stick != stick) ++wrong;
+    if (stick) {
+      ++sticking;
+      stick2 += p.v_next * p.v_next;
+    }
   }
   r.test_error = std::sqrt(err2 / ref2);
   r.mode_error = static_cast<double>(wrong) / static_cast<double>(test.size());
+  r.stick_speed = sticking > 0 ? std::sqrt(stick2 / sticking) / (truth.mu * truth.mg / truth.mass) : 0.0;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -129,7 +141,7 @@ int main(int argc, char** argv) {
 
   const Block1d truth{1.0, 1.0, true_mu};
   std::ofstream csv(csv_path);
-  csv << "param,method,samples,seed,epochs,converged,train_loss,test_error,mode_error,failed,seconds\n";
+  csv << "param,method,samples,seed,epochs,converged,train_loss,test_error,mode_error,failed,train_failed,stick_speed,seconds\n";
   std::printf("Learning curves, 1-D block (true mu %g, initial mu %g, noise %g relative, %d held-out, L-BFGS <= %d "
               "iterations)\n",
               true_mu, init_mu, noise, test_size, epochs);
@@ -163,7 +175,7 @@ int main(int argc, char** argv) {
         const BlockDataset test = generate_block_dataset(g);
         const RunResult r = run(param, method, train_data, test, truth, init_mu, epochs, threads);
         csv << param_name << ',' << method_name << ',' << n << ',' << s << ',' << r.epochs << ',' << (r.converged ? 1 : 0) << ','
-            << r.train_loss << ',' << r.test_error << ',' << r.mode_error << ',' << r.failed << ',' << r.seconds << '\n';
+            << r.train_loss << ',' << r.test_error << ',' << r.mode_error << ',' << r.failed << ',' << r.train_failed << ',' << r.stick_speed << ',' << r.seconds << '\n';
         csv.flush();
         c.err.push_back(r.test_error);
         c.mode.push_back(r.mode_error);

@@ -3,8 +3,8 @@
 // 1e-6: the data are polynomial or rational in θ), and the hard and relaxed losses
 // (learn/block_param_objective.hpp) against central differences of the mean loss for every
 // parameterization, at a θ perturbed off the physical model (step 1e-6·max(|θ|, scale);
-// 1e-5 relative, QP tolerance 1e-11; no sample within 2% of a stick/slip kink of the
-// hard loss is guaranteed by a check of Lemke's mode at ±h). Also: the physical
+// 1e-5 relative, QP tolerance 1e-11; for the hard loss every sample's Lemke mode is
+// checked to be the same at θ ± h, so no stick/slip kink lies in the step). Also: the physical
 // parameterization gives the same loss and gradient as the block's own objectives
 // (learn/block_losses.hpp), and the convex method is refused.
 #include <lcprelax/learn/block_param.hpp>
