@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
-  std::printf("\nSummary: smallest N with median test error <= 1%%; mean mode error at N = 1000\n");
+  std::printf("\nSummary: smallest N (of the sizes run) with median test error <= 1%%; mean mode error at N = 1000\n");
   std::printf("%-20s %14s %18s\n", "param/method", "N_for_1pct", "mode_err_at_1000");
   for (const std::string& name : rows) {
     std::string reach = "> " + std::to_string(sizes.back());
