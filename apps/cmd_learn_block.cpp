@@ -4,7 +4,7 @@
 //  [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--momentum β] [--soft-nonnegativity] [--soft-lambdas]
 //  [--l1-softness] [--max-dissipation none|qp|ext] [--a1 … --a5] [--regularization ε]
 //  [--log FILE.csv] [--checkpoint FILE] [--resume FILE]
-//  [--landscape OUT] [--json]` (docs/cli.md): learns the friction coefficient of the seeds'
+//  [--landscape OUT] [--param physical|pair|elementwise|residual] [--json]` (docs/cli.md): learns the friction coefficient of the seeds'
 // 1-D block (Parmar, Halm & Posa, IROS 2021) from transitions (v, u, v_next), generated
 // from --true-mu (noise σ relative to the RMS of v_next, learn/block_dataset.hpp) or read
 // from --data. --checkpoint/--resume: a run that survives a kill (cmd_learn_checkpoint.hpp).
@@ -17,6 +17,12 @@
 // [0.05, 50]× the true μ, or the initial μ without one) and the plots OUT.png and
 // OUT_gradient.png (OUT may end in .png or .svg to choose the format; without Cairo only
 // the CSV, with a message).
+// --param (learn/block_param.hpp): which parameters are learned; physical (default) is
+// μ (with --learn-mass/--learn-mg) on the block's own objectives; pair, elementwise and
+// residual learn nonphysical parameters with --method hard or relaxed (convex, --learn-mass,
+// --learn-mg and --landscape are refused with exit 2). Their initial values are the
+// physical model at --init-mu. JSON also: param, and learned_groups (group → name → value,
+// block_param_group); for a nonphysical param, true lists the truth in that param's terms.
 // Exit 0 success, 1 when a sample's solve failed, 2 on bad input.
 #include "cli_common.hpp"
 #include "cmd_learn_checkpoint.hpp"
@@ -25,6 +31,7 @@
 
 #include <lcprelax/learn/block_landscape.hpp>
 #include <lcprelax/learn/block_losses.hpp>
+#include <lcprelax/learn/block_param_objective.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
 #include <lcprelax/core/errors.hpp>
 
@@ -63,6 +70,7 @@ struct LearnBlockOptions {
   double a[5] = {1.0, 1.0, 20.0, 20.0, 0.1};
   double regularization = 1e-3;
   std::string log, landscape;
+  std::string param = "physical";
   bool json = false;
   LearnCheckpointOptions checkpoint;
 };
@@ -71,6 +79,14 @@ Json parameter_object(const learn::ParameterSet& theta) {
   Json j = Json::object();
   for (Index i = 0; i < theta.size(); ++i)
     if (theta[i].learn) j[theta[i].name] = number_or_null(theta[i].value);
+  return j;
+}
+
+// The learned parameters by group (block_param_group): group → name → value.
+Json parameter_groups(const learn::ParameterSet& theta) {
+  Json j = Json::object();
+  for (Index i = 0; i < theta.size(); ++i)
+    if (theta[i].learn) j[learn::block_param_group(theta[i].name)][theta[i].name] = number_or_null(theta[i].value);
   return j;
 }
 
@@ -110,6 +126,18 @@ void run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, 
 
 int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
   const learn::BlockMethod method = learn::parse_block_method(o.method);
+  learn::BlockParam param = learn::BlockParam::physical;
+  try {
+    param = learn::parse_block_param(o.param);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--param: ") + e.what());
+  }
+  const bool physical = param == learn::BlockParam::physical;
+  require_option(physical || method != learn::BlockMethod::convex, "--param",
+                 o.param + " needs --method hard or relaxed (the convex loss has no LCP data to parameterize)");
+  require_option(physical || (!o.learn_mass && !o.learn_mg), "--param",
+                 o.param + " learns its own parameters; --learn-mass and --learn-mg go with --param physical");
+  require_option(physical || o.landscape.empty(), "--param", o.param + ": --landscape goes with --param physical");
   require_option(std::isfinite(o.init_mu) && o.init_mu > 0.0, "--init-mu", "must be positive and finite");
   require_option(std::isnan(o.true_mu) || (std::isfinite(o.true_mu) && o.true_mu > 0.0), "--true-mu",
                  "must be positive and finite");
@@ -159,8 +187,12 @@ int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
     g.slip_max = o.slip_max;
     data = learn::generate_block_dataset(g);
   }
-  std::unique_ptr<learn::BlockObjective> objective = learn::make_block_objective(method, data, s);
-  learn::ParameterSet theta = learn::block_parameters(o.init_mu, o.mass, o.mg, o.learn_mass, o.learn_mg);
+  if (!physical) s.relaxed.nonconvex = learn::NonconvexPolicy::shift;  // an elementwise M may be indefinite
+  std::unique_ptr<learn::Objective> objective =
+      physical ? std::unique_ptr<learn::Objective>(learn::make_block_objective(method, data, s))
+               : learn::make_block_param_objective(param, method, data, s);
+  learn::ParameterSet theta = physical ? learn::block_parameters(o.init_mu, o.mass, o.mg, o.learn_mass, o.learn_mg)
+                                       : learn::block_param_parameters(param, o.init_mu, data.mass, data.mg);
   const learn::ParameterSet initial = theta;
 
   std::vector<Index> all(static_cast<std::size_t>(data.size()));
@@ -177,30 +209,52 @@ int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
 
   Json j;
   j["method"] = learn::to_string(method);
+  j["param"] = learn::to_string(param);
   Json truth = Json::object();
-  truth["mu"] = number_or_null(true_mu);
-  if (o.learn_mass) truth["mass"] = o.data.empty() ? number_or_null(o.mass) : Json(nullptr);
-  if (o.learn_mg) truth["mg"] = o.data.empty() ? number_or_null(o.mg) : Json(nullptr);
+  if (physical) {
+    truth["mu"] = number_or_null(true_mu);
+    if (o.learn_mass) truth["mass"] = o.data.empty() ? number_or_null(o.mass) : Json(nullptr);
+    if (o.learn_mg) truth["mg"] = o.data.empty() ? number_or_null(o.mg) : Json(nullptr);
+  } else if (std::isfinite(true_mu)) {
+    truth = parameter_object(learn::block_param_parameters(param, true_mu, data.mass, data.mg));
+  } else {
+    truth = parameter_object(initial);
+    for (auto& [name, value] : truth.items()) value = nullptr;
+  }
   j["true"] = truth;
   j["initial"] = parameter_object(initial);
   j["learned"] = parameter_object(theta);
+  j["learned_groups"] = parameter_groups(theta);
   j["final_loss"] = number_or_null(final_eval.evaluated > 0 ? final_eval.loss : std::nan(""));
   add_train_outcome(j, result, o.epochs);
   j["seconds"] = seconds;
-  if (o.epochs == 0)
+  if (o.epochs == 0 && physical)
     j["gradient"] = number_or_null(final_eval.evaluated > 0 ? final_eval.gradient(theta.index("mu")) : std::nan(""));
+  if (o.epochs == 0 && !physical) {
+    Json g = Json::object();
+    for (Index i = 0; i < theta.size(); ++i)
+      g[theta[i].name] = number_or_null(final_eval.evaluated > 0 ? final_eval.gradient(i) : std::nan(""));
+    j["gradient"] = g;
+  }
   j["samples"] = data.size();
   j["failed"] = failed;
   if (o.json) {
     print_json(j);
   } else {
-    std::cout << "method " << j["method"].get<std::string>() << ": mu " << o.init_mu << " -> " << theta.value("mu");
-    if (std::isfinite(true_mu)) std::cout << " (true " << true_mu << ")";
+    std::cout << "method " << j["method"].get<std::string>();
+    if (physical) {
+      std::cout << ": mu " << o.init_mu << " -> " << theta.value("mu");
+      if (std::isfinite(true_mu)) std::cout << " (true " << true_mu << ")";
+    } else {
+      std::cout << ", param " << o.param << ": learned " << j["learned_groups"].dump();
+    }
     std::cout << ", final loss " << j["final_loss"].dump() << ", " << j["epochs"].get<int>() << " epochs ("
               << j["stop_reason"].get<std::string>() << "), " << seconds << " s";
     if (o.epochs == 0) std::cout << ", gradient " << j["gradient"].dump();
     std::cout << '\n';
-    if (failed > 0) std::cout << failed << " failed sample solves (" << final_eval.first_failure << ")\n";
+    if (failed > 0)
+      std::cout << failed << " failed sample solves ("
+                << (final_eval.first_failure.empty() ? result.first_failure : final_eval.first_failure) << ")\n";
   }
   return failed > 0 ? kExitSolveFailed : kExitSuccess;
 }
@@ -238,6 +292,8 @@ Command add_learn_block_command(CLI::App& learn) {
   app->add_option("--regularization", o->regularization, "relaxed: ε of (ε/2)‖x‖² (the seeds' 1e-3·I)")
       ->capture_default_str();
   app->add_option("--log", o->log, "CSV log of every epoch");
+  app->add_option("--param", o->param, "parameterization: physical, pair, elementwise or residual (learn/block_param.hpp)")
+      ->capture_default_str();
   app->add_option("--landscape", o->landscape, "write OUT.csv and plots of every method's loss over μ");
   add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);

@@ -40,6 +40,12 @@ mkdir -p "$R/plots"
 run "$B/run_gradient_landscape" --csv "$R/gradient_landscape.csv" --plots "$R/plots" > "$R/gradient_landscape.txt"
 run python3 bench/softening_table.py --landscape "$R/gradient_landscape.csv" --softening "$R/softening.csv" \
   > "$R/softening_table.md"
+run "$B/run_learning_curves" --csv "$R/learning_curves.csv" --plot "$R/plots/learning_curves.png" \
+  > "$R/learning_curves.txt"
+run "$B/run_learning_curves" --methods hard --sizes 3000,10000 --csv "$R/learning_curves_hard_10k.csv" \
+  > "$R/learning_curves_hard_10k.txt"
+run python3 bench/learning_curve_table.py --csv "$R/learning_curves.csv" --csv "$R/learning_curves_hard_10k.csv" \
+  > "$R/learning_curves.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
 run "$B/bench_learn_polygon" --benchmark_min_time=0.5 > "$R/learn_polygon.txt"
 run "$B/run_learn_throughput" --threads 1,2 --csv "$R/learn_throughput.csv" > "$R/learn_throughput.txt"
