@@ -7,7 +7,8 @@
 // --only runs the named problems (file stems) of DIR; --verbose prints the solver's
 // per-iteration log on stderr; --no-exact-bound-steps and --no-clean-bound-multipliers
 // switch off the QpSettings of those names, --no-primal-reg-drop sets
-// QpSettings::primal_reg_drop = 0 (ablation).
+// QpSettings::primal_reg_drop = 0 (ablation), --primal-reg-drop V sets it to V;
+// --kkt-backend NAME (automatic, cholmod, dense, mumps) sets QpSettings::kkt_backend.
 //
 // Success (qpbenchmark's "high accuracy" when eps = 1e-9):
 // - lcprelax: status solved and the primal residual, dual residual and duality gap it
@@ -59,6 +60,8 @@ struct Options {
   bool use_clp = true;
   bool verbose = false;
   bool exact_bound_steps = true, clean_bound_multipliers = true, primal_reg_drop = true;
+  double primal_reg_drop_value = -1.0;  ///< < 0: QpSettings' default
+  lcprelax::KktBackend kkt_backend = lcprelax::KktBackend::automatic;
   std::vector<std::string> only;  ///< file stems to run (empty: all)
 };
 
@@ -79,7 +82,8 @@ struct Row {
 [[noreturn]] void usage(const std::string& error) {
   std::cerr << "error: " << error << "\nusage: run_maros_meszaros DIR [--out results.csv] [--time-limit SEC] "
             << "[--eps 1e-9] [--clp PATH_TO_CLP | --no-clp] [--only NAME,NAME,...] [--verbose]\n"
-            << "       [--no-exact-bound-steps] [--no-clean-bound-multipliers] [--no-primal-reg-drop]\n";
+            << "       [--no-exact-bound-steps] [--no-clean-bound-multipliers] [--no-primal-reg-drop]\n"
+            << "       [--primal-reg-drop V] [--kkt-backend automatic|cholmod|dense|mumps]\n";
   std::exit(2);
 }
 
@@ -101,6 +105,15 @@ Options parse_args(int argc, char** argv) {
       else if (a == "--no-exact-bound-steps") o.exact_bound_steps = false;
       else if (a == "--no-primal-reg-drop") o.primal_reg_drop = false;
       else if (a == "--no-clean-bound-multipliers") o.clean_bound_multipliers = false;
+      else if (a == "--primal-reg-drop") o.primal_reg_drop_value = std::stod(value());
+      else if (a == "--kkt-backend") {
+        const std::string b = value();
+        if (b == "automatic") o.kkt_backend = lcprelax::KktBackend::automatic;
+        else if (b == "cholmod") o.kkt_backend = lcprelax::KktBackend::cholmod;
+        else if (b == "dense") o.kkt_backend = lcprelax::KktBackend::dense;
+        else if (b == "mumps") o.kkt_backend = lcprelax::KktBackend::mumps;
+        else usage("unknown --kkt-backend " + b);
+      }
       else if (a == "--only") {
         std::string list = value();
         for (std::size_t pos = 0; pos <= list.size();) {
@@ -128,7 +141,9 @@ void solve_lcprelax(const lcprelax::io::QpsModel& model, const Options& opt, Row
   settings.verbose = opt.verbose;
   settings.exact_bound_steps = opt.exact_bound_steps;
   settings.clean_bound_multipliers = opt.clean_bound_multipliers;
+  if (opt.primal_reg_drop_value >= 0.0) settings.primal_reg_drop = opt.primal_reg_drop_value;
   if (!opt.primal_reg_drop) settings.primal_reg_drop = 0.0;
+  settings.kkt_backend = opt.kkt_backend;
   try {
     lcprelax::QpSolver solver(settings);
     const auto t0 = std::chrono::steady_clock::now();
@@ -144,6 +159,18 @@ void solve_lcprelax(const lcprelax::io::QpsModel& model, const Options& opt, Row
     row.lcp_gap = info.duality_gap;
     if (r.x.size() == model.problem.num_variables()) {
       row.lcp_check = lcprelax::bench::qp_residuals(model.problem, r.x, r.y, r.z, r.z_bounds);
+      if (opt.verbose) {
+        // Roundoff floor of the dual residual's evaluation in double: the largest row sum of
+        // |terms| of Px + q + Aᵀy + Gᵀz + z_bounds times the unit roundoff 2⁻⁵³.
+        const lcprelax::QpProblem& p = model.problem;
+        Vector mag = p.q.cwiseAbs() + r.z_bounds.cwiseAbs();
+        const lcprelax::SparseMatrix Pabs = p.P.cwiseAbs();
+        mag += Pabs.selfadjointView<Eigen::Upper>() * r.x.cwiseAbs();
+        if (p.A.rows()) mag += p.A.cwiseAbs().transpose() * r.y.cwiseAbs();
+        if (p.G.rows()) mag += p.G.cwiseAbs().transpose() * r.z.cwiseAbs();
+        std::fprintf(stderr, "dual residual evaluation floor: max_j sum|terms| = %.3e -> u*that = %.3e\n",
+                     mag.maxCoeff(), mag.maxCoeff() * std::ldexp(1.0, -53));
+      }
     }
     row.lcp_success = info.status == lcprelax::QpStatus::solved && row.lcp_primal <= opt.eps &&
                       row.lcp_dual <= opt.eps && row.lcp_gap <= opt.eps;

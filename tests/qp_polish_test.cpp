@@ -67,6 +67,7 @@ QpResult solve(const QpProblem& p, bool polish, int max_iter) {
   QpSettings s;
   s.polish = polish;
   s.max_iter = max_iter;
+  s.primal_reg_drop = 0.0;  // the stalled case below stalls with ρ = 1e-9 throughout
   QpSolver solver(s);
   solver.setup(p);
   return solver.solve();

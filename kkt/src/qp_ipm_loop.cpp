@@ -194,9 +194,13 @@ void QpSolver::Impl::run(QpInfo& info) {
       info.refinement_steps += newton_step();
     }
     if (settings.primal_reg_drop > 0 && !primal_reg_dropped && rho > settings.primal_reg_drop &&
-        dual_stalls >= kDualStalls) {
-      // The dual residual survived kDualStalls full steps: lower ρ once per run (a failed
-      // factorization raises it again in factorize()) and redo the predictor.
+        dual_stalls >= kDualStalls && res.dual > settings.eps_abs + settings.eps_rel * res.scale_d) {
+      // The dual residual survived kDualStalls full steps while still above its tolerance:
+      // lower ρ once per run (a failed factorization raises it again in factorize()) and
+      // redo the predictor. Not once the dual residual is within tolerance: there it only
+      // jitters at its roundoff floor, and a lower ρ then lets dual-degenerate LPs' large
+      // multipliers drift, which moves the gap's floor above 1e-9 (generated LPs of
+      // tests/qp_primal_reg_drop_guard_test.cpp: 3 of 288 lost without this condition).
       primal_reg_dropped = true;
       rho = settings.primal_reg_drop;
       if (!factorize(info)) return give_up(QpStatus::numerical_error, "factorization failed");

@@ -111,12 +111,13 @@ struct QpSettings {
   /// elsewhere: reg_primal = 1e-12 throughout loses LASER, and ρ = reg_primal/max(1, ‖x̃‖∞)
   /// loses LASER and QGROW7. Iterate-driven regularization in the spirit of PIQP (Schwan,
   /// Jiang, Kuhn, Jones, "PIQP: a proximal interior-point quadratic programming solver",
-  /// IEEE CDC 2023). tests/qp_primal_regularization_test.cpp. Off by default (0): at 1e-13
-  /// it keeps the 53 solved shared Maros–Meszaros problems but moves the generated
-  /// degenerate LPs of tests/qp_degenerate_lp_test.cpp (one ends solved_inaccurate) and
-  /// solves the stalled problem of tests/qp_polish_test.cpp without polishing; not yet
-  /// resolved.
-  double primal_reg_drop = 0.0;
+  /// IEEE CDC 2023). tests/qp_primal_regularization_test.cpp. Only while the unscaled dual
+  /// residual is above its tolerance: once within it, r_d only jitters at its roundoff
+  /// floor, and dropping ρ there lets dual-degenerate LPs' large multipliers drift (gap
+  /// stuck at 1e-8). With that guard, on the 288 generated degenerate LPs of
+  /// tests/qp_primal_reg_drop_guard_test.cpp: 278 solved against 265 with 0, none lost
+  /// (unguarded: 277, 3 lost). tests/qp_polish_test.cpp sets 0 to keep its stalled case.
+  double primal_reg_drop = 1e-13;
   /// Bound-multiplier steps from the dual-residual equation rather than z/s·dx + ξ
   /// (ipm_iterate.hpp); false only to measure what it fixes.
   bool exact_bound_steps = true;
