@@ -69,6 +69,10 @@ struct SimulatorSettings {
   /// while the island's QP pattern repeats (convex_solver_cache.hpp; same answers to
   /// roundoff); false: fresh solvers (a new symbolic analysis) every step.
   bool reuse_convex_solvers = true;
+  /// Convex model: how its phase QPs are solved (contact_step.hpp ConvexSolver). With
+  /// active_set_newton each contact's final active state is kept (keyed as the LCP warm
+  /// start) and starts the next step's solve; failures fall back to the interior point.
+  ConvexSolver convex_solver = ConvexSolver::interior_point;
   SimulatorSettings();
 
   /// Empty when valid, else a message naming the first bad field ("dt: must be ...").
@@ -98,6 +102,9 @@ struct StepStats {
   /// Convex model: phase solvers set up afresh (a symbolic analysis each) and phase solvers
   /// updated in place because the island's QP pattern repeated (convex_solver_cache.hpp).
   long solver_setups = 0, solver_updates = 0;
+  /// Convex model with ConvexSolver::active_set_newton: islands whose active-set solve
+  /// did not converge and took the interior point's answer (not failures).
+  int newton_fallbacks = 0;
   /// Convex model with reuse_convex_solvers: wall time (s, summed over islands) of building
   /// the phase QPs, of QpSolver setup()/update(), of solve() and, within it, of the numeric
   /// KKT factorizations (ConvexSolverCache).
