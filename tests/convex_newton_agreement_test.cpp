@@ -186,8 +186,9 @@ TEST(ActiveSetQp, GeneratedBoundConstrainedQpsMatchInteriorPoint) {
     detail::ActiveSetSettings as;
     as.eps_abs = 1e-9;
     as.max_iterations = 40;
+    const Vector start = Vector::Zero(n);  // xl < 0 < xu: feasible
     const detail::ActiveSetResult a = detail::solve_active_set_qp(
-        p, {}, std::vector<detail::ActiveState>(static_cast<std::size_t>(n), 0), as);
+        p, {}, std::vector<detail::ActiveState>(static_cast<std::size_t>(n), 0), as, &start);
     ASSERT_TRUE(a.converged) << a.message;
     EXPECT_LE(a.primal_residual, 1e-9);
     EXPECT_LE(a.dual_residual, 1e-9 * std::max(1.0, p.q.cwiseAbs().maxCoeff()));
