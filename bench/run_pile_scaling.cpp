@@ -1,7 +1,7 @@
 // run_pile_scaling: time per step of lcprelax's Simulator against the number of bodies
 // and contacts of a settled pile, for both contact models and 1 vs T OpenMP threads.
 //
-//   run_pile_scaling [--sizes 10,20,...] [--steps 10] [--warmup 2] [--models lcp,convex,convex-fresh]
+//   run_pile_scaling [--sizes 10,20,...] [--steps 10] [--warmup 2] [--models lcp,convex,convex-fresh,convex-newton]
 //                    [--threads 1,2] [--lcp-max-bodies 100] [--budget 60]
 //                    [--settle-max-steps 150] [--settle-speed 0.05] [--settle-budget 1200]
 //                    [--seed 1] [--csv pile_scaling.csv]
@@ -65,10 +65,10 @@ struct Row {
 
 void write_row(std::ostream& os, const Row& r) {
   char buf[1024];
-  std::snprintf(buf, sizeof buf, "%s,%d,%s,%d,%d,%d,%d,%.6g,%.1f,%d,%d,%d,%.1f,%.6g,%.6g,%.6g,%.6g,%.4g,%ld,%.6g,%.6g,", r.phase.c_str(),
+  std::snprintf(buf, sizeof buf, "%s,%d,%s,%d,%d,%d,%d,%.6g,%.1f,%d,%d,%d,%.1f,%.6g,%.6g,%.6g,%.6g,%.4g,%ld,%.6g,%.6g,%ld,", r.phase.c_str(),
                 r.bodies, r.model.c_str(), r.threads, r.w.steps, r.w.budget_hit ? 1 : 0, r.settled ? 1 : 0,
                 r.w.final_speed, r.w.contacts_mean, r.w.contacts_max, r.w.islands_max, r.w.unknowns_max, r.w.work_mean,
-                r.w.seconds_per_step, r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.max_energy_gain);
+                r.w.seconds_per_step, r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.max_energy_gain, r.w.newton_fallbacks);
   os << buf << csv_quote(r.note.empty() ? r.w.first_failure : r.note) << '\n';
   os.flush();
 }
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   app.add_option("--sizes", sizes, "Numbers of bodies")->delimiter(',')->check(CLI::Range(1, 1000000));
   app.add_option("--steps", steps, "Timed steps per window")->check(CLI::Range(1, 1000000))->capture_default_str();
   app.add_option("--warmup", warmup, "Untimed steps before each window")->check(CLI::Range(0, 1000))->capture_default_str();
-  app.add_option("--models", models, "Contact models")->delimiter(',')->check(CLI::IsMember({"lcp", "convex", "convex-fresh"}));
+  app.add_option("--models", models, "Contact models")->delimiter(',')->check(CLI::IsMember({"lcp", "convex", "convex-fresh", "convex-newton"}));
   app.add_option("--threads", threads, "Thread counts (1 is needed for speedup_vs_1)")
       ->delimiter(',')
       ->check(CLI::Range(1, 1024));
@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   out << "phase,bodies,model,threads,steps,budget_hit,settled,final_speed,contacts_mean,contacts_max,islands_max,"
-         "unknowns_max,work_mean,seconds_per_step,cpu_per_step,collision_s,solve_s,speedup_vs_1,failed_islands,max_penetration,max_energy_gain,note\n";
+         "unknowns_max,work_mean,seconds_per_step,cpu_per_step,collision_s,solve_s,speedup_vs_1,failed_islands,max_penetration,max_energy_gain,newton_fallbacks,note\n";
 
   // per (model, threads): (mean contacts, s/step) over the sizes
   std::map<std::pair<std::string, int>, std::pair<std::vector<double>, std::vector<double>>> series, cpu_series;
@@ -143,8 +143,8 @@ int main(int argc, char** argv) {
     for (const std::string& m : models) {
       Scene scene = s.scene;
       // convex-fresh: the convex model with fresh phase solvers every step (no reuse).
-      const bool fresh = m == "convex-fresh";
-      scene.settings.model = parse_contact_model(fresh ? "convex" : m);
+      const bool fresh = m == "convex-fresh", newton = m == "convex-newton";
+      scene.settings.model = parse_contact_model(fresh || newton ? "convex" : m);
       double t1 = 0.0;
       for (const int t : threads) {
         Row r;
@@ -160,6 +160,7 @@ int main(int argc, char** argv) {
         SimulatorSettings settings;
         settings.threads = t;
         settings.reuse_convex_solvers = !fresh;
+        if (newton) settings.convex_solver = ConvexSolver::active_set_newton;
         r.w = time_window(scene, settings, warmup, steps, budget);
         if (t == 1) t1 = r.w.seconds_per_step;
         if (t1 > 0 && r.w.seconds_per_step > 0) r.speedup = t1 / r.w.seconds_per_step;
@@ -170,10 +171,10 @@ int main(int argc, char** argv) {
         cpu_series[{m, t}].second.push_back(r.w.cpu_per_step);
         std::printf("N=%d %s T=%d: %d steps%s, contacts %.1f (max %d), islands %d, unknowns %d, work %.1f, "
                     "%.4g s/step (cpu %.4g s, collision %.3g, solve %.3g), speedup %.3g, failed %ld, max_pen %.3g m, "
-                    "solver reuse %.2f, qp assemble %.3g, setup/update %.3g, solve %.3g (factor %.3g)%s%s\n",
+                    "newton fallbacks %ld, solver reuse %.2f, qp assemble %.3g, setup/update %.3g, solve %.3g (factor %.3g)%s%s\n",
                     n, m.c_str(), t, r.w.steps, r.w.budget_hit ? " (budget hit)" : "", r.w.contacts_mean,
                     r.w.contacts_max, r.w.islands_max, r.w.unknowns_max, r.w.work_mean, r.w.seconds_per_step,
-                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.solver_reuse, r.w.qp_assemble, r.w.qp_prepare, r.w.qp_solve, r.w.qp_factor, r.w.first_failure.empty() ? "" : ": ",
+                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.newton_fallbacks, r.w.solver_reuse, r.w.qp_assemble, r.w.qp_prepare, r.w.qp_solve, r.w.qp_factor, r.w.first_failure.empty() ? "" : ": ",
                     r.w.first_failure.c_str());
         std::fflush(stdout);
       }

@@ -284,6 +284,22 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
           }
         }
         wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm);
+      } else if (settings_.convex_solver == ConvexSolver::active_set_newton) {
+        const Index nc = s.num_contacts(), nf = s.num_friction();
+        std::vector<signed char> warm;
+        if (settings_.warm_start) {
+          warm.assign(static_cast<std::size_t>(nc + nf), 0);
+          for (Index c = 0; c < nc; ++c) {
+            auto it = warm_.find(keys[s.contacts[c]]);
+            warm[c] = it == warm_.end() ? -1 : (it->second.normal ? 1 : 0);
+          }
+          for (Index f = 0; f < nf; ++f) {
+            auto it = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
+            if (it != warm_.end()) warm[nc + f] = it->second.plus ? 1 : (it->second.minus ? -1 : 0);
+          }
+        }
+        wk.solution = solve_convex_model_newton(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
+                                                settings_.convex_softening, caches[i], warm);
       } else {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
                                          settings_.convex_softening, caches[i]);
@@ -345,7 +361,9 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         if (++stats.failed_islands == 1) stats.first_failure = sol.message;
     }
     const Index nc = s.num_contacts(), nf = s.num_friction();
-    if (lcp && static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
+    if (sol.newton_fallback) ++stats.newton_fallbacks;
+    // The LCP's final basis, or the convex active-set method's final active states.
+    if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       for (Index c = 0; c < nc; ++c) next_warm[keys[s.contacts[c]]].normal = sol.z_basic[c];
       for (Index f = 0; f < nf; ++f) {
         WarmEntry& e = next_warm[keys[s.contacts[s.friction_rows[f]]]];

@@ -117,6 +117,9 @@ struct ContactSolution {
   long work = 0;            ///< Lemke pivots, or interior-point iterations of both phases
   std::vector<bool> z_basic;  ///< LCP final basis (warm start of the next step)
   bool warm_started = false;  ///< LCP: the warm basis solved it in zero pivots
+  /// Convex model with ConvexSolver::active_set_newton: a phase did not converge by the
+  /// active-set method and the interior point's answer (all of it) was used.
+  bool newton_fallback = false;
 };
 
 struct StewartTrinkleLcp {
@@ -158,5 +161,29 @@ struct ConvexSolverCache;  // convex_solver_cache.hpp
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                    ConvexSolverCache* cache);
+
+/// How the convex model's phase QPs are solved: by the interior point (QpSolver), or by the
+/// warm-started primal–dual active-set (semismooth Newton) method of active_set_qp.hpp,
+/// which falls back to the interior point for the whole island when a phase does not
+/// converge to its tolerances (ContactSolution::newton_fallback).
+enum class ConvexSolver { interior_point, active_set_newton };
+
+/// The convex model by the active-set Newton method (ConvexSolver::active_set_newton), same
+/// model and same QPs as solve_convex_model. `warm` is empty or holds nc + nf entries: per
+/// contact 1 (its λn was positive last step), 0 (it was zero) or −1 (unknown: guessed from
+/// bn < 0); per friction row +1 (λt = μλn last step), −1 (λt = −μλn) or 0 (inside the cone).
+/// On return z_basic holds nc + 3nf flags in solve_lcp_model's layout: λn > 0, λt at +μλn,
+/// λt at −μλn, and 0 (for the next step's `warm`; empty after a fallback). The tolerance is
+/// settings.eps_abs on the phase KKT residuals (active_set_qp.hpp); `cache` is used by the
+/// interior-point fallback only. `max_iterations`: factorizations per phase before the
+/// fallback (kConvexNewtonMaxIterations by default).
+ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
+                                          ConvexFormulation formulation, const NormalSofteningSettings& softening,
+                                          ConvexSolverCache* cache, const std::vector<signed char>& warm = {},
+                                          int max_iterations = -1);
+
+/// Default cap of active-set iterations (KKT factorizations) per phase of
+/// solve_convex_model_newton; beyond it the island falls back to the interior point.
+constexpr int kConvexNewtonMaxIterations = 20;
 
 }  // namespace lcprelax

@@ -15,7 +15,9 @@
 //      the interior point); velocities are untouched, so penetration is removed without
 //      adding kinetic energy.
 // Warm starts: each contact is keyed by (body a, body b, static shape, ordinal within the
-// pair); the final Lemke basis of its unknowns is reused next step.
+// pair); the final Lemke basis of its unknowns is reused next step, and with
+// ConvexSolver::active_set_newton the convex solve's final active states (λn > 0, λt at
+// ±μλn) start the next step's active-set solve (convex_model_newton.cpp).
 //
 // Energy (J): kinetic ½ Σ (m|v|² + Iω²) plus potential −Σ m g·x (zero at the origin).
 #include <lcprelax/kkt/qp_settings.hpp>
@@ -69,6 +71,13 @@ struct SimulatorSettings {
   /// while the island's QP pattern repeats (convex_solver_cache.hpp; same answers to
   /// roundoff); false: fresh solvers (a new symbolic analysis) every step.
   bool reuse_convex_solvers = true;
+  /// Convex model: how its phase QPs are solved (contact_step.hpp ConvexSolver). With
+  /// active_set_newton each contact's final active state is kept (keyed as the LCP warm
+  /// start) and starts the next step's solve; failures fall back to the interior point.
+  /// Default interior_point: on the piles of bench/results/pile_newton.csv (50–1,000 bodies,
+  /// still moving at 0.3–0.6 m/s) every active-set solve hit its cap and fell back, costing
+  /// 1.1–1.9× the interior point's CPU time; it converges on stacks (0 fallbacks).
+  ConvexSolver convex_solver = ConvexSolver::interior_point;
   SimulatorSettings();
 
   /// Empty when valid, else a message naming the first bad field ("dt: must be ...").
@@ -98,6 +107,9 @@ struct StepStats {
   /// Convex model: phase solvers set up afresh (a symbolic analysis each) and phase solvers
   /// updated in place because the island's QP pattern repeated (convex_solver_cache.hpp).
   long solver_setups = 0, solver_updates = 0;
+  /// Convex model with ConvexSolver::active_set_newton: islands whose active-set solve
+  /// did not converge and took the interior point's answer (not failures).
+  int newton_fallbacks = 0;
   /// Convex model with reuse_convex_solvers: wall time (s, summed over islands) of building
   /// the phase QPs, of QpSolver setup()/update(), of solve() and, within it, of the numeric
   /// KKT factorizations (ConvexSolverCache).
