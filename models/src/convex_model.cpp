@@ -22,7 +22,7 @@ namespace {
 // 1e-6 first (exact to the incline test's 1e-5); resting pyramids (tests/
 // dynamics_rest_test.cpp: statically indeterminate, W singular, every normal row active)
 // leave the interior point "no progress" at 1e-6 and are solved at 1e-4 or 1e-2.
-constexpr double kKappaSlack[] = {1e-6, 1e-4, 1e-2};
+// The slacks: detail::kKappaSlacks (convex_phase_qp.hpp).
 
 // Sets `qp` up for `p`, or updates it in place when its last problem had p's pattern.
 void prepare(QpSolver& qp, const QpProblem& p, ConvexSolverCache& cache) {
@@ -96,7 +96,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
     return out;
   }
   const Vector lambda1 = r1.x.segment(p1.lambda_offset, nc).cwiseMax(0.0);
-  // κ = eᵀλn of phase 1, loosened (kKappaSlack, plus 1e-12 N·s): with the normal rows
+  // κ = eᵀλn of phase 1, loosened (detail::kKappaSlacks, plus 1e-12 N·s): with the normal rows
   // active, eᵀλn ≤ κ exactly makes phase 2's feasible set a point in λn, which leaves the
   // interior point no interior (measured: "no progress" failures on 1-2 contact islands).
   const double kappa = lambda1.sum();
@@ -107,9 +107,9 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   c.stats.assemble_seconds += seconds_since(t0);
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;
-  for (double slack : kKappaSlack) {
+  for (double slack : detail::kKappaSlacks) {
     p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
-    if (slack == kKappaSlack[0])
+    if (slack == detail::kKappaSlacks[0])
       prepare(qp2, p2.problem, c);
     else
       qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept

@@ -13,10 +13,6 @@
 namespace lcprelax {
 namespace {
 
-// Relative loosening of phase 2's bound eᵀλn ≤ κ: the interior point's first try
-// (convex_model.cpp, kKappaSlack[0]), so that both methods solve the same QP.
-constexpr double kKappaSlack = 1e-6;
-
 ContactSolution fallback(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                          ConvexFormulation formulation, const NormalSofteningSettings& softening,
                          ConvexSolverCache* cache, long newton_work, const std::string& why) {
@@ -72,7 +68,8 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   // Phase 2: contact rows active and λn free where phase 1 ended active; friction rows from
   // the previous step (stick unless it slid); an inactive contact pins λt = μλn = 0.
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
-  p2.problem.u(nc) = kappa * (1.0 + kKappaSlack) + 1e-12;
+  // The interior point's first loosening, so that both methods solve the same QP.
+  p2.problem.u(nc) = kappa * (1.0 + detail::kKappaSlacks[0]) + 1e-12;
   const Index o2 = p2.lambda_offset;
   std::vector<detail::ActiveState> rows2(static_cast<std::size_t>(p2.problem.num_inequalities()), 0);
   std::vector<detail::ActiveState> b2(static_cast<std::size_t>(p2.problem.num_variables()), 0);

@@ -1,5 +1,6 @@
 // The convex model's phase QPs in the dual and the lifted formulation (convex_phase_qp.hpp).
 #include <lcprelax/models/convex_phase_qp.hpp>
+#include <lcprelax/core/math_constants.hpp>
 #include <lcprelax/sparse/triplets.hpp>
 
 #include <cmath>
@@ -8,8 +9,6 @@
 
 namespace lcprelax::detail {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The lifted momentum equality M w − Jnᵀλn (− Jtᵀλt when `friction`) = 0 as p.A, p.b, with
 // w (3 per body) first in x, λn from column nv, λt from nv + nc (M = diag(1/minv)).

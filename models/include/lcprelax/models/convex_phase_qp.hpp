@@ -74,6 +74,10 @@ struct ConvexPhaseTerms {
 ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& softening,
                                const ConvexPhaseTerms& terms = {});
 
+/// Relative loosenings of phase 2's bound eᵀλn ≤ κ(1 + slack) + 1e-12 N·s, tried in order
+/// (convex_model.cpp explains why; the Newton path uses the first).
+inline constexpr double kKappaSlacks[] = {1e-6, 1e-4, 1e-2};
+
 /// Phase 2 (contact_step.hpp) with u(nc) = +∞ for eᵀλn ≤ κ (the caller sets it), with the
 /// normal softening's terms (normal_softening.hpp): ½ Σ g_i Wnn_i λn_i² − λnᵀ v_ref.
 ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTerms& softening,
