@@ -13,6 +13,10 @@
 //   z at 0 in one is nonbasic in the other);
 // - a generated pile problem (tests/data/generated, 186 contacts) is still solved (the crash
 //   path fails there and the cold fallback solves it) to the same error bound;
+// - a P-matrix LCP (M = AᵀA + I, n = 60) from the solution basis of a perturbed q: the
+//   rounds reach the solution with fewer pivots than the crash path without them, and
+//   backward() with that basis equals the cold start's and central differences (h = 1e-6,
+//   tolerance 1e-6 relative) at every entry of q;
 // - a negative crash_flip_rounds is refused.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/io/siconos_errors.hpp>
@@ -23,6 +27,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <string>
 
 namespace lcprelax {
@@ -71,6 +77,61 @@ TEST(LemkeCrashFlip, GeneratedPileStillSolved) {
     const CrashRun run = crash_solve(d, rounds);
     EXPECT_EQ(run.result.info.status, LcpStatus::solved) << rounds << " rounds: " << run.result.info.message;
     EXPECT_LE(run.error, 1e-10) << rounds << " rounds";
+  }
+}
+
+TEST(LemkeCrashFlip, BackwardWithTheFlippedBasis) {
+  const Index n = 60;
+  std::mt19937 gen(7);
+  std::normal_distribution<double> normal;
+  DenseMatrix A(n, n);
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < n; ++j) A(i, j) = (i + j) % 3 == 0 ? normal(gen) : 0.0;
+  const SparseMatrix M = DenseMatrix(A.transpose() * A + DenseMatrix::Identity(n, n)).sparseView();
+  Vector q(n), q_guess(n), w(n);
+  for (Index i = 0; i < n; ++i) {
+    q(i) = normal(gen);
+    q_guess(i) = q(i) + 0.5 * normal(gen);
+    w(i) = 1.0 + 0.1 * (i % 5);
+  }
+  LemkeSolver guess;
+  guess.setup(M, q_guess);
+  ASSERT_EQ(guess.solve().info.status, LcpStatus::solved);
+  long pivots[2] = {0, 0};
+  Vector g_flip;
+  LemkeSolver cold;
+  cold.setup(M, q);
+  const LcpResult& r0 = cold.solve();
+  ASSERT_EQ(r0.info.status, LcpStatus::solved);
+  for (int rounds : {0, 5}) {
+    LemkeSettings settings;
+    settings.crash_start = true;
+    settings.crash_flip_rounds = rounds;
+    LemkeSolver crash(settings);
+    crash.setup(M, q);
+    crash.warm_start(guess.result().z_basic);
+    const LcpResult& rc = crash.solve();
+    ASSERT_EQ(rc.info.status, LcpStatus::solved) << rc.info.message;
+    ASSERT_LE((rc.z - r0.z).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + r0.z.lpNorm<Eigen::Infinity>()));
+    pivots[rounds ? 1 : 0] = rc.info.pivots;
+    if (rounds) g_flip = crash.backward(w).dq;
+  }
+  EXPECT_LT(pivots[1], pivots[0]);
+  const Vector g_cold = cold.backward(w).dq;
+  EXPECT_LE((g_flip - g_cold).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + g_cold.lpNorm<Eigen::Infinity>()));
+  const double h = 1e-6;
+  for (Index k = 0; k < n; ++k) {
+    Vector qp = q, qm = q;
+    qp(k) += h;
+    qm(k) -= h;
+    LemkeSolver sp, sm;
+    sp.setup(M, qp);
+    sm.setup(M, qm);
+    const LcpResult& a = sp.solve();
+    const LcpResult& b = sm.solve();
+    ASSERT_TRUE(a.info.status == LcpStatus::solved && b.info.status == LcpStatus::solved);
+    const double fd = (w.dot(a.z) - w.dot(b.z)) / (2 * h);
+    EXPECT_NEAR(g_flip(k), fd, 1e-6 * (1.0 + std::abs(fd))) << "q entry " << k;
   }
 }
 
