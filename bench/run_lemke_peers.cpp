@@ -16,7 +16,8 @@
 //   fc2d: lcprelax_dense (skipped above --dense-max-contacts contacts: minutes on the
 //         667-contact granular problem), lcprelax_sparse (both on fc2d_to_lcp, 4nc
 //         unknowns), lcprelax_crash (sparse, crash-started from 50 projected Gauss–Seidel
-//         sweeps, lcp/fc2d_pgs.hpp, their time included), siconos_fc2d_lemke (SICONOS_FRICTION_2D_LEMKE, its own 3nc-unknown
+//         sweeps, lcp/fc2d_pgs.hpp, their time included; with LemkeSettings::crash_flip_rounds
+//         as by default, and lcprelax_crash_noflip with 0), siconos_fc2d_lemke (SICONOS_FRICTION_2D_LEMKE, its own 3nc-unknown
 //         LCP), siconos_fc2d_nsgs (SICONOS_FRICTION_2D_NSGS, tolerance 1e-10).
 // Every answer is scored with lcprelax::io::lcp_error / io::fc2d_error, i.e. the error as
 // Siconos defines it, recomputed from the returned z (LCP) or r (fc2d, u = W r + q):
@@ -218,6 +219,15 @@ void run_fc2d(const std::string& name, const lcprelax::io::Fc2dData& d, const Op
                                                 lemke_settings(lcprelax::LemkeMethod::sparse, opt.refactor_interval));
       },
       lcp_error));
+  // The same crash start without the block principal pivoting rounds (before/after).
+  out.push_back(lcprelax_row(
+      "lcprelax_crash_noflip",
+      [&] {
+        lcprelax::LemkeSettings s = lemke_settings(lcprelax::LemkeMethod::sparse, opt.refactor_interval);
+        s.crash_flip_rounds = 0;
+        return lcprelax::solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50, s);
+      },
+      lcp_error));
   const long lemke_max = std::max<long>(10000, 50L * (3 * d.contacts + 1));
   if (opt.siconos) {
     out.push_back(siconos_row(
@@ -314,7 +324,8 @@ int main(int argc, char** argv) {
   }
   std::printf("\nsummary (ok = status solved and error_scaled <= %.0e):\n", kTarget);
   for (const char* s :
-       {"lcprelax_dense", "lcprelax_sparse", "siconos_lemke", "siconos_fc2d_lemke", "siconos_fc2d_nsgs"}) {
+       {"lcprelax_dense", "lcprelax_sparse", "lcprelax_crash", "lcprelax_crash_noflip", "siconos_lemke",
+        "siconos_fc2d_lemke", "siconos_fc2d_nsgs"}) {
     int total = 0, ok = 0;
     for (const Row& r : rows)
       if (r.solver == s) ++total, ok += r.ok();

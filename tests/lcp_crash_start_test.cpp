@@ -138,6 +138,7 @@ TEST(LemkeCrashStart, BackwardDifferentiatesTheFinalBasis) {
   ASSERT_EQ(guess.solve().info.status, LcpStatus::solved);
   LemkeSettings settings;
   settings.crash_start = true;
+  settings.crash_flip_rounds = 0;  // a Lemke crash path (the flips solve this P-matrix LCP at once)
   LemkeSolver crash(settings), cold;
   crash.setup(M, q);
   crash.warm_start(guess.result().z_basic);
@@ -190,6 +191,7 @@ TEST(LemkeCrashStart, WithoutColdFallbackTheCrashPathAloneIsCapped) {
   for (bool fallback : {false, true}) {
     LemkeSettings settings;
     settings.crash_start = true;
+    settings.crash_flip_rounds = 0;  // the crash path itself is capped here
     settings.crash_cold_fallback = fallback;
     settings.max_pivots = 2;
     settings.covering_retries = 0;

@@ -73,6 +73,7 @@ struct LemkeSolver::Impl {
   bool try_warm_start(bool factorized);
   bool repair_warm_basis();
   bool try_crash_start();
+  bool flip_infeasible(bool factorized);
 
   // lemke_solution.cpp
   void extract_solution();

@@ -44,6 +44,7 @@ void LemkeSolver::Impl::run() {
   if (!warm.empty()) {
     bool factorized = load_warm_basis();
     if (!factorized && settings.crash_start && repair_warm_basis()) factorized = load_warm_basis();
+    if (settings.crash_start && settings.crash_flip_rounds > 0) factorized = flip_infeasible(factorized);
     if (try_warm_start(factorized)) return;
     if (settings.crash_start && !settings.crash_cold_fallback && !factorized)
       return finish(LcpStatus::numerical_error, "crash basis is singular (no cold fallback)");

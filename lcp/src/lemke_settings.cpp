@@ -15,6 +15,7 @@ std::string LemkeSettings::validation_error() const {
   else if (regularization_retries < 0) os << "regularization_retries = " << regularization_retries << " must be >= 0";
   else if (!(regularization > 0) || !std::isfinite(regularization)) os << "regularization = " << regularization << " must be finite and > 0";
   else if (dense_max_n < 0) os << "dense_max_n = " << dense_max_n << " must be >= 0";
+  else if (crash_flip_rounds < 0) os << "crash_flip_rounds = " << crash_flip_rounds << " must be >= 0";
   else if (refactor_interval < 1) os << "refactor_interval = " << refactor_interval << " must be >= 1";
   else
     for (Index i = 0; i < covering.size(); ++i)

@@ -70,6 +70,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   // Attempts, cheapest first (contact_step.hpp). Lemke's own retries only in the last one;
   // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
   LemkeSettings plain = settings;
+  plain.crash_flip_rounds = 0;  // block principal pivoting of crash bases: not measured on piles
   plain.covering_retries = 0;
   plain.regularization_retries = 0;
   LemkeSettings exact = plain;  // attempt 1 fails fast (see kLcpExactPivotsPerUnknown)
