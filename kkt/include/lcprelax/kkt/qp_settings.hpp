@@ -117,7 +117,11 @@ struct QpSettings {
   /// stuck at 1e-8). With that guard, on the 288 generated degenerate LPs of
   /// tests/qp_primal_reg_drop_guard_test.cpp: 278 solved against 265 with 0, none lost
   /// (unguarded: 277, 3 lost). tests/qp_polish_test.cpp sets 0 to keep its stalled case.
-  double primal_reg_drop = 1e-13;
+  /// Off (0) by default: at 1e-13 the convex learning loss's adjoint no longer matches
+  /// central differences on a pile island (tests/learn_step_loss_convex_test.cpp, errors up
+  /// to 2e-1 relative on friction-row entries), not yet understood; 1e-13 is the value
+  /// measured above.
+  double primal_reg_drop = 0.0;
   /// Bound-multiplier steps from the dual-residual equation rather than z/s·dx + ξ
   /// (ipm_iterate.hpp); false only to measure what it fixes.
   bool exact_bound_steps = true;
