@@ -6,6 +6,7 @@
 //       [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--lr-decay d]
+//       [--portfolio [--portfolio-adam-epochs E]]
 //       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE]
 //       [--resume FILE] [--json]
 //
@@ -30,6 +31,7 @@
 #include "cmd_learn_checkpoint.hpp"
 
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/learn/portfolio.hpp>
 #include <lcprelax/learn/prior.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
@@ -71,6 +73,8 @@ struct LearnSceneOptions {
   double beta2 = learn::OptimizerSettings{}.beta2;
   bool lm_geodesic = learn::OptimizerSettings{}.lm_geodesic_acceleration;
   double prior_weight = 0.0;
+  bool portfolio = false;
+  int portfolio_adam_epochs = 300;
   std::string log, plot;
   bool json = false;
   LearnCheckpointOptions checkpoint;
@@ -171,6 +175,12 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   require_option(std::isfinite(o.lr_decay) && o.lr_decay >= 0, "--lr-decay", "must be finite and >= 0");
   require_option(!o.lm_geodesic || o.optimizer == "lm", "--lm-geodesic", "needs --optimizer lm");
   require_option(std::isfinite(o.prior_weight) && o.prior_weight >= 0, "--prior-weight", "must be finite and >= 0");
+  require_option(!o.portfolio || o.optimizer != "adam", "--portfolio",
+                 "needs an --optimizer other than adam (its second recipe is adam, then that optimizer)");
+  require_option(!o.portfolio || o.epochs > 0, "--portfolio", "needs --epochs > 0");
+  require_option(!o.portfolio || (o.checkpoint.checkpoint.empty() && o.checkpoint.resume.empty() && o.log.empty()),
+                 "--portfolio", "cannot be combined with --checkpoint, --resume or --log");
+  require_option(o.portfolio_adam_epochs >= 1, "--portfolio-adam-epochs", "must be >= 1");
   if (!o.plot.empty()) {
     std::string ext = std::filesystem::path(o.plot).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -231,7 +241,21 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
 
   Stopwatch clock;
   learn::TrainResult result;
-  if (o.epochs > 0) result = learn::train(objective, theta, training, validation, t);
+  learn::PortfolioResult portfolio;
+  if (o.portfolio) {
+    // Two recipes from the same initial values (learn/portfolio.hpp): the optimizer alone,
+    // and Adam first (--lr, --lr-decay, --portfolio-adam-epochs) then the optimizer; the one
+    // with the lower training data loss is kept.
+    learn::TrainSettings adam = t;
+    adam.epochs = o.portfolio_adam_epochs;
+    adam.optimizer.kind = learn::OptimizerKind::adam;
+    adam.optimizer.lm_geodesic_acceleration = false;
+    const std::vector<learn::TrainRecipe> recipes = {{o.optimizer, {t}}, {"adam+" + o.optimizer, {adam, t}}};
+    portfolio = learn::train_portfolio(objective, scene_objective, theta, training, validation, recipes);
+    result = portfolio.result;
+  } else if (o.epochs > 0) {
+    result = learn::train(objective, theta, training, validation, t);
+  }
   // The data loss, without the prior's term.
   const learn::BatchResult final_eval = learn::evaluate_mean(scene_objective, theta, training, o.threads, t.distributed);
   const double seconds = clock.seconds();
@@ -257,6 +281,14 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   j["final_loss"] = number_or_null(final_eval.loss);
   j["prior_weight"] = o.prior_weight;
   add_train_outcome(j, result, o.epochs);
+  if (o.portfolio) {
+    Json recipes = Json::array();
+    for (const learn::RecipeOutcome& r : portfolio.outcomes)
+      recipes.push_back({{"recipe", r.name}, {"final_loss", number_or_null(r.final_loss)}, {"failed", r.failed},
+                         {"epochs", r.epochs}, {"seconds", r.seconds}, {"stop_reason", r.stop_reason}});
+    j["portfolio"] = recipes;
+    j["chosen_recipe"] = portfolio.outcomes[portfolio.chosen].name;
+  }
   j["seconds"] = seconds;
   j["bodies"] = static_cast<int>(data.scene.world.bodies.size());
   j["transitions"] = static_cast<int>(data.transitions.size());
@@ -322,6 +354,11 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--init-from", o->init_from,
                   "values from the \"learned\" map of an earlier run's --json result: the initial values of the learned parameters (replacing --perturb's), the fixed values of the others");
   app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
+  app->add_flag("--portfolio", o->portfolio,
+               "train two recipes from the same initial values, the --optimizer alone and adam (--lr, --lr-decay) then "
+               "the --optimizer, and keep the one with the lower training loss (JSON: portfolio, chosen_recipe)");
+  app->add_option("--portfolio-adam-epochs", o->portfolio_adam_epochs, "--portfolio: epochs of its adam stage")
+      ->capture_default_str();
   app->add_flag("--lm-geodesic", o->lm_geodesic,
                "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");
   app->add_option("--prior-weight", o->prior_weight,

@@ -25,6 +25,8 @@
 #include <lcprelax/lcp/fc2d_pgs.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
+#include "lemke_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,19 +83,9 @@ TEST(LemkeCrashFlip, GeneratedPileStillSolved) {
 }
 
 TEST(LemkeCrashFlip, BackwardWithTheFlippedBasis) {
-  const Index n = 60;
-  std::mt19937 gen(7);
-  std::normal_distribution<double> normal;
-  DenseMatrix A(n, n);
-  for (Index i = 0; i < n; ++i)
-    for (Index j = 0; j < n; ++j) A(i, j) = (i + j) % 3 == 0 ? normal(gen) : 0.0;
-  const SparseMatrix M = DenseMatrix(A.transpose() * A + DenseMatrix::Identity(n, n)).sparseView();
-  Vector q(n), q_guess(n), w(n);
-  for (Index i = 0; i < n; ++i) {
-    q(i) = normal(gen);
-    q_guess(i) = q(i) + 0.5 * normal(gen);
-    w(i) = 1.0 + 0.1 * (i % 5);
-  }
+  const test::PMatrixLcp p = test::p_matrix_lcp(60, 7);
+  const SparseMatrix& M = p.M;
+  const Vector &q = p.q, &q_guess = p.q_guess, &w = p.w;
   LemkeSolver guess;
   guess.setup(M, q_guess);
   ASSERT_EQ(guess.solve().info.status, LcpStatus::solved);
@@ -119,20 +111,7 @@ TEST(LemkeCrashFlip, BackwardWithTheFlippedBasis) {
   EXPECT_LT(pivots[1], pivots[0]);
   const Vector g_cold = cold.backward(w).dq;
   EXPECT_LE((g_flip - g_cold).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + g_cold.lpNorm<Eigen::Infinity>()));
-  const double h = 1e-6;
-  for (Index k = 0; k < n; ++k) {
-    Vector qp = q, qm = q;
-    qp(k) += h;
-    qm(k) -= h;
-    LemkeSolver sp, sm;
-    sp.setup(M, qp);
-    sm.setup(M, qm);
-    const LcpResult& a = sp.solve();
-    const LcpResult& b = sm.solve();
-    ASSERT_TRUE(a.info.status == LcpStatus::solved && b.info.status == LcpStatus::solved);
-    const double fd = (w.dot(a.z) - w.dot(b.z)) / (2 * h);
-    EXPECT_NEAR(g_flip(k), fd, 1e-6 * (1.0 + std::abs(fd))) << "q entry " << k;
-  }
+  test::expect_q_gradient_matches_central_differences(p, g_flip);
 }
 
 TEST(LemkeCrashFlip, NegativeRoundsRefused) {

@@ -26,6 +26,8 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
+#include "lemke_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,19 +122,9 @@ TEST(LemkeCrashStart, SolvesEverySiconosFc2dFileWithNoMorePivots) {
 TEST(LemkeCrashStart, BackwardDifferentiatesTheFinalBasis) {
   // A P-matrix LCP (M = AᵀA + I, unique solution, nondegenerate for a random q) and a crash
   // basis from the solution of a perturbed q: the crash path pivots to the solution's basis.
-  const Index n = 60;
-  std::mt19937 gen(7);
-  std::normal_distribution<double> normal;
-  DenseMatrix A(n, n);
-  for (Index i = 0; i < n; ++i)
-    for (Index j = 0; j < n; ++j) A(i, j) = (i + j) % 3 == 0 ? normal(gen) : 0.0;
-  const SparseMatrix M = dense_to_sparse(A.transpose() * A + DenseMatrix::Identity(n, n));
-  Vector q(n), q_guess(n), w(n);
-  for (Index i = 0; i < n; ++i) {
-    q(i) = normal(gen);
-    q_guess(i) = q(i) + 0.5 * normal(gen);
-    w(i) = 1.0 + 0.1 * (i % 5);
-  }
+  const test::PMatrixLcp p = test::p_matrix_lcp(60, 7);
+  const SparseMatrix& M = p.M;
+  const Vector &q = p.q, &q_guess = p.q_guess, &w = p.w;
   LemkeSolver guess;
   guess.setup(M, q_guess);
   ASSERT_EQ(guess.solve().info.status, LcpStatus::solved);
@@ -153,21 +145,7 @@ TEST(LemkeCrashStart, BackwardDifferentiatesTheFinalBasis) {
   ASSERT_LE((rc.z - r0.z).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + r0.z.lpNorm<Eigen::Infinity>()));
   const Vector g_crash = crash.backward(w).dq, g_cold = cold.backward(w).dq;
   EXPECT_LE((g_crash - g_cold).lpNorm<Eigen::Infinity>(), 1e-10 * (1.0 + g_cold.lpNorm<Eigen::Infinity>()));
-  // Central differences of ℓ(q) = wᵀz(q) at every entry of q.
-  const double h = 1e-6;
-  for (Index k = 0; k < n; ++k) {
-    Vector qp = q, qm = q;
-    qp(k) += h;
-    qm(k) -= h;
-    LemkeSolver sp, sm;
-    sp.setup(M, qp);
-    sm.setup(M, qm);
-    const LcpResult& a = sp.solve();
-    const LcpResult& b = sm.solve();
-    ASSERT_TRUE(a.info.status == LcpStatus::solved && b.info.status == LcpStatus::solved);
-    const double fd = (w.dot(a.z) - w.dot(b.z)) / (2 * h);
-    EXPECT_NEAR(g_crash(k), fd, 1e-6 * (1.0 + std::abs(fd))) << "q entry " << k;
-  }
+  test::expect_q_gradient_matches_central_differences(p, g_crash);  // ℓ(q) = wᵀz(q)
 }
 
 TEST(LemkeCrashStart, WithoutColdFallbackTheCrashPathAloneIsCapped) {

@@ -9,6 +9,8 @@
 // per-sample warm starts on, over two successive evaluations.
 #include <lcprelax/learn/block_losses.hpp>
 
+#include "learn_block_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,20 +19,9 @@
 namespace lcprelax::learn {
 namespace {
 
-BlockDataset data() {
-  BlockDataSettings s;
-  s.truth = Block1d{1.3, 0.8, 0.3};
-  s.samples = 24;
-  s.seed = 5;
-  s.noise = 0.05;
-  return generate_block_dataset(s);
-}
+BlockDataset data() { return test::gradient_test_block_data(5); }
 
-std::vector<Index> all(const BlockDataset& d) {
-  std::vector<Index> v;
-  for (Index i = 0; i < d.size(); ++i) v.push_back(i);
-  return v;
-}
+std::vector<Index> all(const BlockDataset& d) { return test::every_sample(d); }
 
 // Distance of the closest sample to its stick/slip boundary, relative to the boundary.
 double kink_distance(const BlockDataset& d, const ParameterSet& t) {

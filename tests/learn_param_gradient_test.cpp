@@ -12,6 +12,8 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
+#include "learn_block_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,20 +24,9 @@ namespace {
 
 constexpr BlockParam kAll[] = {BlockParam::physical, BlockParam::pair, BlockParam::elementwise, BlockParam::residual};
 
-BlockDataset data() {
-  BlockDataSettings s;
-  s.truth = Block1d{1.3, 0.8, 0.3};
-  s.samples = 24;
-  s.seed = 7;
-  s.noise = 0.05;
-  return generate_block_dataset(s);
-}
+BlockDataset data() { return test::gradient_test_block_data(7); }
 
-std::vector<Index> all(const BlockDataset& d) {
-  std::vector<Index> v;
-  for (Index i = 0; i < d.size(); ++i) v.push_back(i);
-  return v;
-}
+std::vector<Index> all(const BlockDataset& d) { return test::every_sample(d); }
 
 // θ of `param` moved off the physical model: every parameter by a seeded amount.
 ParameterSet perturbed(BlockParam param, std::uint64_t seed) {
