@@ -16,6 +16,8 @@
 #   convex_adam_lm the same in two runs: first Adam on the same loss for $ADAM_EPOCHS epochs
 #               (default 300; lr 0.02, decay 0.003: the CLI's defaults), then LM from its result
 #               (--init-from); the first run's JSON kept as <run>_<bodies>_seed<S>.stage1;
+#   convex_portfolio the same with --portfolio (learn/portfolio.hpp): LM alone and Adam
+#               ($ADAM_EPOCHS epochs) then LM from the same start, the lower training loss kept;
 #   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
 #               convex model's class: what it recovers there).
 # Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and
@@ -41,9 +43,10 @@ for seed in $SEEDS; do
       relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
       convex) args="--method convex $LM --epochs 200" ;;
       convex_geo) args="--method convex $LM --epochs 200 --lm-geodesic" ;;
+      convex_portfolio) args="--method convex $LM --epochs 200 --portfolio --portfolio-adam-epochs $ADAM_EPOCHS" ;;
       convex_map|convex_adam_lm) ;;
       convex_lcp) args="--method convex --data-model lcp $LM --epochs 200" ;;
-      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_map, convex_adam_lm, convex_lcp)" >&2; exit 2 ;;
+      *) echo "unknown run '$run' (relaxed, convex, convex_geo, convex_map, convex_adam_lm, convex_portfolio, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
     if [ "$run" = convex_map ]; then
@@ -79,7 +82,11 @@ for f in sorted(glob.glob(os.path.join(sys.argv[1], "*.json"))):
     if os.path.exists(f[:-5] + ".stage1"):  # two-stage runs: both runs' epochs and time
         s1 = json.load(open(f[:-5] + ".stage1"))
         epochs, seconds = epochs + s1["epochs"], seconds + s1["seconds"]
-    print(",".join([os.path.basename(f)[:-5], j["method"], str(epochs), j["stop_reason"].replace(",", ";"),
+    stop = j["stop_reason"]
+    if "chosen_recipe" in j:  # portfolio runs: which recipe was kept, the others' losses
+        others = ["%s loss %.3g" % (r["recipe"], r["final_loss"]) for r in j["portfolio"] if r["recipe"] != j["chosen_recipe"]]
+        stop = "kept %s (%s): %s" % (j["chosen_recipe"], "; ".join(others), stop)
+    print(",".join([os.path.basename(f)[:-5], j["method"], str(epochs), stop.replace(",", ";"),
                     "%.1f" % seconds, str(j["transitions"]), "%.4g" % j["final_loss"], "%.4g" % e["mu"],
                     worst("mass"), worst("inertia"), worst(".vertex"), str(j["failed"])]))
 PY
