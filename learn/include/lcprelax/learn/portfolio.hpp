@@ -8,11 +8,12 @@
 // Why: on nonconvex losses no single optimizer wins on every problem, and a stalled run
 // looks like a converged one from the inside (a kink, a flat valley). Measured on the
 // convex loss of the learning pile (learn scene, 25% perturbation, bench/results/
-// learn_scene_recovery.csv): Levenberg–Marquardt alone recovers the 30-body seeds 1, 3
-// and 5 and drifts along the common mass scale on seed 2; 300 epochs of Adam then LM
-// recovers seed 2 and the 20-body seed 4 but stops at a kink on seed 3 (training loss
-// 20.4 against LM's 0.014). In each case the recipe that recovered the parameters had the
-// lower training loss. The price is the sum of the recipes' run times.
+// learn_scene_recovery.csv): Levenberg–Marquardt alone recovers the 30-body seeds 1 and 5
+// and drifts along the common mass scale on seed 2; 300 epochs of Adam then LM recovers
+// seed 2 and the 20-body seed 4 (where LM alone ends at training loss 28.7). Where one
+// recipe recovered the parameters, it had the lower training loss. Where none does (30-body
+// seed 3: both stop at kinks), neither does the portfolio. The price is the sum of the
+// recipes' run times.
 //
 // Every recipe starts from the same θ and the same objective state (Objective::save_state
 // before the first recipe, load_state before each later one: warm starts, proximal centres).
