@@ -6,7 +6,7 @@
 //       [--learn mu,mass,inertia,vertices,ground]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--lr-decay d]
-//       [--portfolio [--portfolio-adam-epochs E]]
+//       [--portfolio [--portfolio-adam-epochs E] [--portfolio-smooth-epochs E]]
 //       [--proximal-iterations K] [--log OUT.csv] [--plot OUT.png|OUT.svg] [--checkpoint FILE]
 //       [--resume FILE] [--json]
 //
@@ -42,6 +42,7 @@
 #include <fstream>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 namespace lcprelax::cli {
 namespace {
@@ -75,6 +76,7 @@ struct LearnSceneOptions {
   double prior_weight = 0.0;
   bool portfolio = false;
   int portfolio_adam_epochs = 300;
+  int portfolio_smooth_epochs = 40;
   std::string log, plot;
   bool json = false;
   LearnCheckpointOptions checkpoint;
@@ -181,6 +183,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   require_option(!o.portfolio || (o.checkpoint.checkpoint.empty() && o.checkpoint.resume.empty() && o.log.empty()),
                  "--portfolio", "cannot be combined with --checkpoint, --resume or --log");
   require_option(o.portfolio_adam_epochs >= 1, "--portfolio-adam-epochs", "must be >= 1");
+  require_option(o.portfolio_smooth_epochs >= 1, "--portfolio-smooth-epochs", "must be >= 1");
   if (!o.plot.empty()) {
     std::string ext = std::filesystem::path(o.plot).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -243,14 +246,26 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   learn::TrainResult result;
   learn::PortfolioResult portfolio;
   if (o.portfolio) {
-    // Two recipes from the same initial values (learn/portfolio.hpp): the optimizer alone,
-    // and Adam first (--lr, --lr-decay, --portfolio-adam-epochs) then the optimizer; the one
-    // with the lower training data loss is kept.
+    // Recipes from the same initial values (learn/portfolio.hpp): the optimizer alone; Adam
+    // first (--lr, --lr-decay, --portfolio-adam-epochs) then the optimizer; and, for the
+    // convex loss, a continuation: the optimizer on the default (smoother, biased) convex loss
+    // for --portfolio-smooth-epochs, then on this run's loss. The lowest training data loss
+    // is kept.
     learn::TrainSettings adam = t;
     adam.epochs = o.portfolio_adam_epochs;
     adam.optimizer.kind = learn::OptimizerKind::adam;
     adam.optimizer.lm_geodesic_acceleration = false;
-    const std::vector<learn::TrainRecipe> recipes = {{o.optimizer, {t}}, {"adam+" + o.optimizer, {adam, t}}};
+    std::vector<learn::TrainRecipe> recipes = {{o.optimizer, {{t}}}, {"adam+" + o.optimizer, {{adam}, {t}}}};
+    std::unique_ptr<learn::SceneObjective> smooth;
+    if (ls.method == learn::LossMethod::convex) {
+      learn::SceneLossSettings smooth_settings = ls;
+      smooth_settings.convex = learn::ConvexStepLossSettings{};
+      smooth_settings.convex.softening = ls.convex.softening;
+      smooth = std::make_unique<learn::SceneObjective>(data, map, smooth_settings);
+      learn::TrainSettings first = t;
+      first.epochs = o.portfolio_smooth_epochs;
+      recipes.push_back({"smooth+" + o.optimizer, {{first, smooth.get()}, {t}}});
+    }
     portfolio = learn::train_portfolio(objective, scene_objective, theta, training, validation, recipes);
     result = portfolio.result;
   } else if (o.epochs > 0) {
@@ -355,9 +370,13 @@ Command add_learn_scene_command(CLI::App& learn) {
                   "values from the \"learned\" map of an earlier run's --json result: the initial values of the learned parameters (replacing --perturb's), the fixed values of the others");
   app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_flag("--portfolio", o->portfolio,
-               "train two recipes from the same initial values, the --optimizer alone and adam (--lr, --lr-decay) then "
-               "the --optimizer, and keep the one with the lower training loss (JSON: portfolio, chosen_recipe)");
+               "train several recipes from the same initial values, the --optimizer alone, adam (--lr, --lr-decay) then "
+               "the --optimizer, and (convex) the --optimizer on the default convex loss then on this one; keep the "
+               "lowest training loss (JSON: portfolio, chosen_recipe)");
   app->add_option("--portfolio-adam-epochs", o->portfolio_adam_epochs, "--portfolio: epochs of its adam stage")
+      ->capture_default_str();
+  app->add_option("--portfolio-smooth-epochs", o->portfolio_smooth_epochs,
+                  "--portfolio, --method convex: epochs of the continuation's first stage, on the default convex loss")
       ->capture_default_str();
   app->add_flag("--lm-geodesic", o->lm_geodesic,
                "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");

@@ -8,7 +8,8 @@
 // Expected: the portfolio keeps the recipe with the lower training loss in either order and
 // leaves θ at its result (1e-8); each recipe starts from x₀ (its outcome equals a train() of
 // its own from x₀, bitwise); the kept result's history numbers its stages' epochs on; a tie
-// keeps the earlier recipe; the selection objective, not the trained one, decides; an empty
+// keeps the earlier recipe; the selection objective, not the trained one, decides; a stage
+// with its own objective trains that one (a continuation); an empty
 // portfolio, a recipe without stages and a stage with a checkpoint are refused.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/portfolio.hpp>
@@ -54,7 +55,7 @@ class Near : public lm_test::SumOfSquares {
 
 ParameterSet start() { return ParameterSet({Parameter{"x", -1.5}}); }
 
-TrainRecipe lm_recipe() { return {"lm", {lm_test::lm_settings(50)}}; }
+TrainRecipe lm_recipe() { return {"lm", {{lm_test::lm_settings(50)}}}; }
 
 TrainRecipe sgd_lm_recipe() {
   TrainSettings sgd;
@@ -62,7 +63,7 @@ TrainRecipe sgd_lm_recipe() {
   sgd.optimizer.kind = OptimizerKind::sgd;
   sgd.optimizer.learning_rate = 0.35;
   sgd.optimizer.momentum = 0.0;
-  return {"sgd+lm", {sgd, lm_test::lm_settings(50)}};
+  return {"sgd+lm", {{sgd}, {lm_test::lm_settings(50)}}};
 }
 
 TEST(LearnPortfolio, KeepsTheRecipeWithTheLowerTrainingLoss) {
@@ -123,6 +124,19 @@ TEST(LearnPortfolio, TheSelectionObjectiveDecides) {
   EXPECT_LT(theta[0].value, -0.5);
 }
 
+// A continuation: LM on a convex stand-in ℓ = (x − 2)² first (its own objective), then LM
+// on the double well from there, ends at the global minimum; the plain LM recipe does not.
+TEST(LearnPortfolio, AStageTrainsItsOwnObjective) {
+  DoubleWell f;
+  Near smooth(2.0);
+  ParameterSet theta = start();
+  const TrainRecipe continuation{"smooth+lm", {{lm_test::lm_settings(50), &smooth}, {lm_test::lm_settings(50)}}};
+  const PortfolioResult p = train_portfolio(f, f, theta, lm_test::all(4), {}, {lm_recipe(), continuation});
+  EXPECT_EQ(p.outcomes[p.chosen].name, "smooth+lm");
+  EXPECT_LT(p.outcomes[1].final_loss, 1e-12);
+  EXPECT_NEAR(theta[0].value, 1.0, 1e-8);
+}
+
 TEST(LearnPortfolio, Refusals) {
   DoubleWell f;
   ParameterSet theta = start();
@@ -130,7 +144,7 @@ TEST(LearnPortfolio, Refusals) {
   EXPECT_THROW(train_portfolio(f, f, theta, s, {}, {}), InputError);
   EXPECT_THROW(train_portfolio(f, f, theta, s, {}, {TrainRecipe{"empty", {}}}), InputError);
   TrainRecipe with_checkpoint = lm_recipe();
-  with_checkpoint.stages[0].checkpoint = "/tmp/portfolio.ckpt";
+  with_checkpoint.stages[0].settings.checkpoint = "/tmp/portfolio.ckpt";
   try {
     train_portfolio(f, f, theta, s, {}, {lm_recipe(), with_checkpoint});
     ADD_FAILURE() << "a stage with a checkpoint was accepted";

@@ -140,26 +140,29 @@ std::string write_trajectory(const std::string& name, int bodies, int frames, bo
   return path;
 }
 
-// --portfolio (learn/portfolio.hpp): two recipes, lm alone (the same run as without
-// --portfolio: equal final loss) and adam then lm; the kept one has the lower training loss,
-// and the reported final_loss is its loss. Refused with adam as the optimizer and with --log.
-TEST(CliLearnSceneOptions, PortfolioKeepsTheRecipeWithTheLowerLoss) {
+// --portfolio (learn/portfolio.hpp): three recipes for the convex loss, lm alone (the same
+// run as without --portfolio: equal final loss), adam then lm, and lm on the default convex
+// loss then on this one; the kept one has the lowest training loss, and the reported
+// final_loss is its loss. Refused with adam as the optimizer and with --log.
+TEST(CliLearnSceneOptions, PortfolioKeepsTheRecipeWithTheLowestLoss) {
   const std::string common = "learn scene --bodies 10 --steps 30 --method convex --phase1-deviation 0 "
                              "--phase1-regularization 1e-6 --threads 2 --json --optimizer lm --epochs 3";
   const CliRun plain = run_cli(common);
-  const CliRun both = run_cli(common + " --portfolio --portfolio-adam-epochs 2");
+  const CliRun all = run_cli(common + " --portfolio --portfolio-adam-epochs 2 --portfolio-smooth-epochs 2");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
-  ASSERT_EQ(both.exit_code, 0) << both.err;
-  const auto jp = nlohmann::json::parse(plain.out), j = nlohmann::json::parse(both.out);
-  ASSERT_EQ(j["portfolio"].size(), 2u) << both.out;
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const auto jp = nlohmann::json::parse(plain.out), j = nlohmann::json::parse(all.out);
+  ASSERT_EQ(j["portfolio"].size(), 3u) << all.out;
   EXPECT_EQ(j["portfolio"][0]["recipe"], "lm");
   EXPECT_EQ(j["portfolio"][1]["recipe"], "adam+lm");
+  EXPECT_EQ(j["portfolio"][2]["recipe"], "smooth+lm");
   EXPECT_EQ(j["portfolio"][0]["final_loss"].get<double>(), jp["final_loss"].get<double>());
-  const double l0 = j["portfolio"][0]["final_loss"].get<double>(), l1 = j["portfolio"][1]["final_loss"].get<double>();
-  const std::string chosen = j["chosen_recipe"].get<std::string>();
-  EXPECT_EQ(chosen, l1 < l0 ? "adam+lm" : "lm");
-  EXPECT_EQ(j["final_loss"].get<double>(), std::min(l0, l1));
-  EXPECT_EQ(j["epochs"].get<int>(), j["portfolio"][chosen == "lm" ? 0 : 1]["epochs"].get<int>());
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < 3; ++k)
+    if (j["portfolio"][k]["final_loss"].get<double>() < j["portfolio"][best]["final_loss"].get<double>()) best = k;
+  EXPECT_EQ(j["chosen_recipe"], j["portfolio"][best]["recipe"]);
+  EXPECT_EQ(j["final_loss"].get<double>(), j["portfolio"][best]["final_loss"].get<double>());
+  EXPECT_EQ(j["epochs"].get<int>(), j["portfolio"][best]["epochs"].get<int>());
   expect_bad_input("learn scene --bodies 10 --steps 30 --method convex --optimizer adam --portfolio --json", "--portfolio");
   expect_bad_input("learn scene --bodies 10 --steps 30 --method convex --optimizer lm --portfolio --log '" +
                        temp_path("portfolio.csv") + "' --json",

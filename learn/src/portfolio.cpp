@@ -15,7 +15,7 @@ void validate(const std::vector<TrainRecipe>& recipes) {
   for (const TrainRecipe& r : recipes) {
     if (r.stages.empty()) throw InputError("train_portfolio: recipe '" + r.name + "' has no stage");
     for (std::size_t s = 0; s < r.stages.size(); ++s)
-      if (!r.stages[s].checkpoint.empty() || !r.stages[s].resume.empty() || !r.stages[s].log_csv.empty())
+      if (const TrainSettings& t = r.stages[s].settings; !t.checkpoint.empty() || !t.resume.empty() || !t.log_csv.empty())
         throw InputError("train_portfolio: recipe '" + r.name + "' stage " + std::to_string(s + 1) +
                          " has a checkpoint, resume or log file (not supported in a portfolio)");
   }
@@ -66,11 +66,12 @@ PortfolioResult train_portfolio(Objective& objective, Objective& selection, Para
     }
     const auto t0 = SteadyClock::now();
     TrainResult total;
-    for (const TrainSettings& stage : recipe.stages) {
+    for (const TrainStage& stage : recipe.stages) {
       const double offset = seconds_since(t0);
-      append_stage(total, train(objective, at, training, validation, stage), offset);
+      Objective& trained = stage.objective ? *stage.objective : objective;
+      append_stage(total, train(trained, at, training, validation, stage.settings), offset);
     }
-    const TrainSettings& last = recipe.stages.back();
+    const TrainSettings& last = recipe.stages.back().settings;
     const BatchResult eval = evaluate_mean(selection, at, training, last.threads, last.distributed);
     RecipeOutcome o;
     o.name = recipe.name;

@@ -15,8 +15,11 @@
 // seed 3: both stop at kinks), neither does the portfolio. The price is the sum of the
 // recipes' run times.
 //
-// Every recipe starts from the same θ and the same objective state (Objective::save_state
+// Every recipe starts from the same θ and the same state of `objective` (Objective::save_state
 // before the first recipe, load_state before each later one: warm starts, proximal centres).
+// A stage may train another objective (TrainStage::objective): a continuation that starts on
+// a smoothed loss and ends on the one `selection` scores (graduated non-convexity, Blake &
+// Zisserman, "Visual Reconstruction", 1987).
 // Ties keep the earlier recipe. A recipe whose final evaluation has failed samples loses
 // to one without. Checkpoints and CSV logs (TrainSettings::checkpoint, resume, log_csv) are
 // refused in a portfolio (the stages would overwrite one file); InputError names the recipe
@@ -28,9 +31,16 @@
 
 namespace lcprelax::learn {
 
+/// One stage of a recipe: its settings and, optionally, its own loss (e.g. a smoothed one
+/// that a continuation starts on; nullptr: the portfolio's `objective`).
+struct TrainStage {
+  TrainSettings settings;
+  Objective* objective = nullptr;
+};
+
 struct TrainRecipe {
-  std::string name;                  ///< e.g. "lm", "adam+lm"
-  std::vector<TrainSettings> stages;  ///< at least one
+  std::string name;               ///< e.g. "lm", "adam+lm"
+  std::vector<TrainStage> stages;  ///< at least one
 };
 
 struct RecipeOutcome {
@@ -53,7 +63,7 @@ struct PortfolioResult {
 };
 
 /// Runs every recipe from `theta` and leaves `theta` at the chosen recipe's final values.
-/// `objective` is trained, `selection` scores the final θ of each recipe on `training`
+/// `objective` is trained (where a stage names no objective of its own), `selection` scores the final θ of each recipe on `training`
 /// (pass the same object for both when there is no prior). Throws InputError on an empty
 /// portfolio, a recipe without stages or a stage with a checkpoint, and whatever train()
 /// throws.
