@@ -9,7 +9,8 @@
 // leaves θ at its result (1e-8); each recipe starts from x₀ (its outcome equals a train() of
 // its own from x₀, bitwise); the kept result's history numbers its stages' epochs on; a tie
 // keeps the earlier recipe; the selection objective, not the trained one, decides; a stage
-// with its own objective trains that one (a continuation); an empty
+// with its own objective trains that one (a continuation); the objective's state (warm
+// starts) ends as the kept recipe left it; an empty
 // portfolio, a recipe without stages and a stage with a checkpoint are refused.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/portfolio.hpp>
@@ -18,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 namespace lcprelax::learn {
@@ -135,6 +137,29 @@ TEST(LearnPortfolio, AStageTrainsItsOwnObjective) {
   EXPECT_EQ(p.outcomes[p.chosen].name, "smooth+lm");
   EXPECT_LT(p.outcomes[1].final_loss, 1e-12);
   EXPECT_NEAR(theta[0].value, 1.0, 1e-8);
+}
+
+// An objective with state (its evaluation count, saved and loaded like warm starts): after
+// the portfolio it is in the state the kept recipe left it in, not the last recipe's.
+class CountingWell : public DoubleWell {
+ public:
+  ResidualResult evaluate_residuals(Index i, const ParameterSet& theta, int t) override {
+    ++calls;
+    return DoubleWell::evaluate_residuals(i, theta, t);
+  }
+  void save_state(StateWriter& out) const override { out.put_i64(calls.load()); }
+  void load_state(StateReader& in) override { calls = in.get_i64(); }
+  std::atomic<long> calls{0};
+};
+
+TEST(LearnPortfolio, TheObjectiveEndsInTheKeptRecipesState) {
+  CountingWell f, alone;
+  ParameterSet theta = start(), theta_alone = start();
+  const PortfolioResult p = train_portfolio(f, f, theta, lm_test::all(4), {}, {sgd_lm_recipe(), lm_recipe()});
+  ASSERT_EQ(p.chosen, 0u);
+  train_portfolio(alone, alone, theta_alone, lm_test::all(4), {}, {sgd_lm_recipe()});
+  EXPECT_GT(alone.calls.load(), 0);
+  EXPECT_EQ(f.calls.load(), alone.calls.load());
 }
 
 TEST(LearnPortfolio, Refusals) {

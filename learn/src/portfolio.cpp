@@ -57,6 +57,7 @@ PortfolioResult train_portfolio(Objective& objective, Objective& selection, Para
   const std::string start_state = saved.take();
   PortfolioResult out;
   ParameterSet best = theta;
+  std::string best_state;
   for (std::size_t k = 0; k < recipes.size(); ++k) {
     const TrainRecipe& recipe = recipes[k];
     ParameterSet at = start;
@@ -86,8 +87,15 @@ PortfolioResult train_portfolio(Objective& objective, Objective& selection, Para
       out.chosen = k;
       best = at;
       out.result = std::move(total);
+      StateWriter w;  // the state the kept θ was scored with (e.g. relaxed proximal centres)
+      objective.save_state(w);
+      best_state = w.take();
     }
     out.outcomes.push_back(std::move(o));
+  }
+  if (out.chosen + 1 != recipes.size()) {
+    StateReader in(best_state, "train_portfolio: the kept recipe's objective state");
+    objective.load_state(in);
   }
   theta = best;
   return out;
