@@ -24,7 +24,8 @@
 // exp_phi for the learning pile). With --data the data are the file's, whatever it says.
 // Output: JSON (method, true, initial, learned, relative_error maps of the learned
 // parameters, final_loss, epochs, stop_reason, converged, seconds, transitions, islands,
-// contacts, failed_islands, failed); progress per epoch on stderr unless --json; --log the
+// contacts, failed_islands, failed; with --portfolio also portfolio, chosen_recipe:
+// learn/portfolio.hpp, docs/cli.md); progress per epoch on stderr unless --json; --log the
 // trainer's CSV; --plot each learned parameter's relative error against wall time.
 // Exit 0; 1 when more than 5% of the transitions fail at the learned θ; 2 on bad input.
 #include "cli_common.hpp"

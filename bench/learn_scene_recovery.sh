@@ -16,8 +16,9 @@
 #   convex_adam_lm the same in two runs: first Adam on the same loss for $ADAM_EPOCHS epochs
 #               (default 300; lr 0.02, decay 0.003: the CLI's defaults), then LM from its result
 #               (--init-from); the first run's JSON kept as <run>_<bodies>_seed<S>.stage1;
-#   convex_portfolio the same with --portfolio (learn/portfolio.hpp): LM alone and Adam
-#               ($ADAM_EPOCHS epochs) then LM from the same start, the lower training loss kept;
+#   convex_portfolio the same with --portfolio (learn/portfolio.hpp): LM alone, Adam
+#               ($ADAM_EPOCHS epochs) then LM, and LM on the default convex loss (40 epochs)
+#               then on the unbiased one, all from the same start; the lowest training loss kept;
 #   convex_lcp  the same convex loss and optimizer on data of the LCP model (outside the
 #               convex model's class: what it recovers there).
 # Writes bench/results/learn_scene_recovery/<run>_<bodies>_seed<S>.json (the CLI's JSON) and

@@ -2,9 +2,8 @@
 # Sanitizer job (also run by .ci/run): builds lcprelax with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: the first report fails the test)
 # in build-asan, without the benchmarks and PETSc, the library at -O1 and the tests' own code
-# at -O0 under ASan only, and runs the tests that are not labelled `long` (tests/CMakeLists.txt; they are not
-# built there). LeakSanitizer is on (suppressions:
-# tests/lsan.supp). The allocation-counting tests are not built there (they interpose malloc).
+# at -O0 under ASan only, and runs the tests that are not labelled `long` (tests/CMakeLists.txt;
+# those are not built there). LeakSanitizer is on (suppressions: tests/lsan.supp). The allocation-counting tests are not built there (they interpose malloc).
 #   scripts/sanitize.sh [BUILD_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."

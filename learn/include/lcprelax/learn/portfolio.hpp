@@ -63,10 +63,10 @@ struct PortfolioResult {
 
 /// Runs every recipe from `theta` and leaves `theta` at the chosen recipe's final values and
 /// `objective` in the state it had there (so a later evaluation at θ gives its final loss).
-/// `objective` is trained (where a stage names no objective of its own), `selection` scores the final θ of each recipe on `training`
-/// (pass the same object for both when there is no prior). Throws InputError on an empty
-/// portfolio, a recipe without stages or a stage with a checkpoint, and whatever train()
-/// throws.
+/// `objective` is trained (where a stage names no objective of its own), `selection` scores
+/// the final θ of each recipe on `training` (pass the same object for both when there is no
+/// prior). Throws InputError on an empty portfolio, a recipe without stages or a stage with
+/// a checkpoint, resume or log file, and whatever train() throws.
 PortfolioResult train_portfolio(Objective& objective, Objective& selection, ParameterSet& theta,
                                 const std::vector<Index>& training, const std::vector<Index>& validation,
                                 const std::vector<TrainRecipe>& recipes);
