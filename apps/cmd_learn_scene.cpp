@@ -3,7 +3,7 @@
 //
 //   lcprelax learn scene [--scene FILE.json | --bodies N [--data-model lcp|convex]] [--data TRAJ.csv] [--steps K]
 //       [--classes C] [--method hard|relaxed|convex] [--softening exp|impedance|penalty]
-//       [--learn mu,mass,inertia,vertices,ground]
+//       [--learn mu,mass,inertia,vertices,ground,gap,residual]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--lr-decay d]
 //       [--portfolio [--portfolio-adam-epochs E] [--portfolio-smooth-epochs E]]
@@ -19,6 +19,7 @@
 // contact steps only. The truth is the scene's parameters; the initial values perturb every
 // learned one by F (perturb_scene_parameters, seed S), or come from an earlier run's JSON
 // result (--init-from). 20% of the transitions (seed S) are held out for validation.
+// --learn gap,residual: per class a gap offset (m), a 3×4 residual W on v* (scene_params.hpp).
 // --softening (convex only): the normal softening of the convex loss and of the generated
 // data (models/normal_softening.hpp); default the scene's ("softening" in the scene JSON,
 // exp_phi for the learning pile). With --data the data are the file's, whatever it says.
@@ -359,7 +360,7 @@ Command add_learn_scene_command(CLI::App& learn) {
                   "convex: normal softening of the loss and the generated data: exp (exp(phi)), impedance (MuJoCo) "
                   "or penalty (default: the scene's)")
       ->check(CLI::IsMember({"exp", "impedance", "penalty"}));
-  app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground")->capture_default_str();
+  app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground,gap,residual")->capture_default_str();
   app->add_option("--epochs", o->epochs, "most training epochs (0: evaluate only)")->capture_default_str();
   add_learn_stop_options(*app, o->stop);
   app->add_option("--batch", o->batch, "mini-batch size (0: all training transitions)")->capture_default_str();

@@ -85,10 +85,11 @@ void SceneObjective::prepare(const ParameterSet& theta, int threads) {
 
 namespace {
 
-// v* of a body in free flight: v + Δt (g + u_xy/m, u_τ/I).
+// v* of a body in free flight: v + Δt (g + u_xy/m, u_τ/I) (+ W f, its velocity residual).
 Vec3 free_flight_velocity(const World& world, const RigidBody& body, const Vec3& u, double dt) {
-  return body.velocity + dt * Vec3(world.gravity.x() + u.x() / body.mass, world.gravity.y() + u.y() / body.mass,
-                                   u.z() / body.inertia);
+  const Vec3 v = body.velocity + dt * Vec3(world.gravity.x() + u.x() / body.mass,
+                                           world.gravity.y() + u.y() / body.mass, u.z() / body.inertia);
+  return has_velocity_residual(body) ? Vec3(v + velocity_residual_term(body)) : v;
 }
 
 std::string island_failure(Index sample, const SceneTransition& t, std::size_t k, const ContactSystem& s,
@@ -197,6 +198,7 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     out.loss += e.squaredNorm();
     ws.gradient.bodies[b].mass += -2.0 * dt * (e.x() * u.x() + e.y() * u.y()) / (body.mass * body.mass);
     ws.gradient.bodies[b].inertia += -2.0 * dt * e.z() * u.z() / (body.inertia * body.inertia);
+    ws.gradient.bodies[b].velocity_residual += 2.0 * e * velocity_residual_features(body).transpose();
   }
   if (settings_.method == LossMethod::relaxed && settings_.relaxed_warm_center)
     centers_[static_cast<std::size_t>(sample)].commit();
@@ -260,6 +262,7 @@ ResidualResult SceneObjective::evaluate_residuals(Index sample, const ParameterS
       ws.gradient.set_zero(world, found.contacts.size());
       ws.gradient.bodies[b].mass = dm[c];
       ws.gradient.bodies[b].inertia = c == 2 ? -dt * u.z() / (body.inertia * body.inertia) : 0.0;
+      ws.gradient.bodies[b].velocity_residual.row(c) = velocity_residual_features(body).transpose();
       out.jacobian.row(row0 + c) = map_.gradient(world, found.contacts, ws.gradient).transpose();
     }
   }

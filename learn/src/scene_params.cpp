@@ -17,7 +17,9 @@ double radius_of(const Polygon& p) {
 }
 
 bool same_class(const RigidBody& a, const RigidBody& b) {
-  if (a.mass != b.mass || a.inertia != b.inertia || a.shape.vertices.size() != b.shape.vertices.size()) return false;
+  if (a.mass != b.mass || a.inertia != b.inertia || a.shape.vertices.size() != b.shape.vertices.size() ||
+      a.gap_offset != b.gap_offset || a.velocity_residual != b.velocity_residual)
+    return false;
   for (std::size_t i = 0; i < a.shape.vertices.size(); ++i)
     if (a.shape.vertices[i] != b.shape.vertices[i]) return false;
   return true;
@@ -25,10 +27,12 @@ bool same_class(const RigidBody& a, const RigidBody& b) {
 
 std::pair<int, int> ordered(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
 
+constexpr Index kResidualEntries = 12;  // W is 3×4, row-major in θ
+
 }  // namespace
 
 SceneLearnFlags parse_scene_learn_flags(const std::string& list) {
-  SceneLearnFlags f{false, false, false, false, false};
+  SceneLearnFlags f{false, false, false, false, false, false, false};
   std::stringstream ss(list);
   std::string item;
   int count = 0;
@@ -38,9 +42,12 @@ SceneLearnFlags parse_scene_learn_flags(const std::string& list) {
                    : item == "inertia" ? &f.inertia
                    : item == "vertices" ? &f.vertices
                    : item == "ground" ? &f.ground
+                   : item == "gap" ? &f.gap
+                   : item == "residual" ? &f.residual
                                       : nullptr;
     if (!target)
-      throw InputError("--learn: unknown parameter kind '" + item + "' (expected mu, mass, inertia, vertices, ground)");
+      throw InputError("--learn: unknown parameter kind '" + item +
+                       "' (expected mu, mass, inertia, vertices, ground, gap, residual)");
     if (*target) throw InputError("--learn: '" + item + "' given twice");
     *target = true;
     ++count;
@@ -103,12 +110,18 @@ SceneParameterMap::SceneParameterMap(const World& world, const SceneParameterSet
   for (std::size_t h = 0; h < world.half_planes.size(); ++h) push(Kind::angle, 1.0), push(Kind::offset, mean_radius);
   first_segment_ = static_cast<Index>(kind_.size());
   for (std::size_t s = 0; s < 4 * world.segments.size(); ++s) push(Kind::segment_end, mean_radius);
+  first_gap_ = static_cast<Index>(kind_.size());
+  if (settings.learn.gap)
+    for (int c = 0; c < classes; ++c) push(Kind::gap, radius[c]);
+  first_residual_ = static_cast<Index>(kind_.size());
+  if (settings.learn.residual)
+    for (Index e = 0; e < kResidualEntries * classes; ++e) push(Kind::residual, 1.0);
   size_ = static_cast<Index>(kind_.size());
 }
 
 ParameterSet SceneParameterMap::parameters(const World& world) const {
   if (world.bodies.size() != body_class_.size() || world.half_planes.size() * 2 != static_cast<std::size_t>(first_segment_ - first_half_plane_) ||
-      world.segments.size() * 4 != static_cast<std::size_t>(size_ - first_segment_))
+      world.segments.size() * 4 != static_cast<std::size_t>(first_gap_ - first_segment_))
     throw InputError("scene parameters: the world does not have the scene's bodies and static shapes");
   const SceneLearnFlags& f = settings_.learn;
   auto scaled = [this](Parameter p, Index k) {  // ξ in units of the parameter's length scale
@@ -120,13 +133,16 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
     p.learn = learn;
     return p;
   };
+  auto representative = [&](std::size_t c) -> const RigidBody& {
+    const auto it = std::find(body_class_.begin(), body_class_.end(), static_cast<int>(c));
+    return world.bodies[static_cast<std::size_t>(it - body_class_.begin())];
+  };
   ParameterSet theta;
   theta.add(positive("mu", world.friction.default_mu, f.mu));
   for (const auto& [a, b] : pairs_)
     theta.add(positive("mu[" + std::to_string(a) + "," + std::to_string(b) + "]", world.friction.mu(a, b), f.mu));
   for (std::size_t c = 0; c < class_first_.size(); ++c) {
-    const auto it = std::find(body_class_.begin(), body_class_.end(), static_cast<int>(c));
-    const RigidBody& body = world.bodies[static_cast<std::size_t>(it - body_class_.begin())];
+    const RigidBody& body = representative(c);
     const std::string prefix = "class" + std::to_string(c) + ".";
     theta.add(positive(prefix + "mass", body.mass, f.mass));
     theta.add(positive(prefix + "inertia", body.inertia, f.inertia));
@@ -155,6 +171,15 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
       theta.add(scaled(p, theta.size()));
     }
   }
+  if (f.gap)
+    for (std::size_t c = 0; c < class_first_.size(); ++c)
+      theta.add(scaled(Parameter{"class" + std::to_string(c) + ".gap", representative(c).gap_offset}, theta.size()));
+  if (f.residual)
+    for (std::size_t c = 0; c < class_first_.size(); ++c)
+      for (Index r = 0; r < 3; ++r)
+        for (Index j = 0; j < 4; ++j)
+          theta.add(Parameter{"class" + std::to_string(c) + ".residual" + std::to_string(r) + std::to_string(j),
+                              representative(c).velocity_residual(r, j)});
   return theta;
 }
 
@@ -175,6 +200,10 @@ void SceneParameterMap::apply(const ParameterSet& theta, World& world) const {
     body.inertia = theta[k + 1].value;
     for (std::size_t i = 0; i < body.shape.vertices.size(); ++i)
       body.shape.vertices[i] = Vec2(theta[k + 2 + 2 * static_cast<Index>(i)].value, theta[k + 3 + 2 * static_cast<Index>(i)].value);
+    if (settings_.learn.gap) body.gap_offset = theta[first_gap_ + c].value;
+    if (settings_.learn.residual)
+      for (Index e = 0; e < kResidualEntries; ++e)
+        body.velocity_residual(e / 4, e % 4) = theta[first_residual_ + kResidualEntries * c + e].value;
   }
   for (std::size_t h = 0; h < world.half_planes.size(); ++h) {
     const double psi = theta[first_half_plane_ + 2 * static_cast<Index>(h)].value;
@@ -217,6 +246,10 @@ Vector SceneParameterMap::gradient(const World& world, const std::vector<Contact
       grad(k + 2 + 2 * static_cast<Index>(i)) += g.bodies[b].vertices[i].x();
       grad(k + 3 + 2 * static_cast<Index>(i)) += g.bodies[b].vertices[i].y();
     }
+    if (settings_.learn.gap) grad(first_gap_ + c) += g.bodies[b].gap_offset;
+    if (settings_.learn.residual)
+      for (Index e = 0; e < kResidualEntries; ++e)
+        grad(first_residual_ + kResidualEntries * c + e) += g.bodies[b].velocity_residual(e / 4, e % 4);
   }
   for (std::size_t h = 0; h < world.half_planes.size(); ++h) {
     const Vec2& n = world.half_planes[h].normal;  // (cos ψ, sin ψ): dn/dψ = (−sin ψ, cos ψ)
@@ -247,7 +280,8 @@ ParameterSet perturb_scene_parameters(const ParameterSet& truth, const ScenePara
       case SceneParameterMap::Kind::mu:
       case SceneParameterMap::Kind::mass:
       case SceneParameterMap::Kind::inertia: theta(k) *= 1.0 + sign * fraction; break;
-      case SceneParameterMap::Kind::angle: theta(k) += sign * 0.1 * fraction; break;
+      case SceneParameterMap::Kind::angle:
+      case SceneParameterMap::Kind::residual: theta(k) += sign * 0.1 * fraction; break;
       default: theta(k) += sign * 0.5 * fraction * map.length_scale(k); break;
     }
   }
@@ -264,7 +298,8 @@ double scene_relative_error(const ParameterSet& estimate, const ParameterSet& tr
     case SceneParameterMap::Kind::mu:
     case SceneParameterMap::Kind::mass:
     case SceneParameterMap::Kind::inertia: return d / std::abs(truth[k].value);
-    case SceneParameterMap::Kind::angle: return d;
+    case SceneParameterMap::Kind::angle:
+    case SceneParameterMap::Kind::residual: return d;
     default: return d / map.length_scale(k);
   }
 }

@@ -57,6 +57,19 @@ std::vector<Island> find_islands(const World& world, const std::vector<Contact>&
   return islands;
 }
 
+Eigen::Vector4d velocity_residual_features(const RigidBody& body) {
+  return Eigen::Vector4d(body.velocity.x(), body.velocity.y(), body.velocity.z(), 1.0);
+}
+
+bool has_velocity_residual(const RigidBody& body) { return (body.velocity_residual.array() != 0.0).any(); }
+
+Vec3 velocity_residual_term(const RigidBody& body) { return body.velocity_residual * velocity_residual_features(body); }
+
+double contact_gap_offset(const World& world, const Contact& c) {
+  const double a = world.bodies[c.body_a].gap_offset;
+  return c.body_b >= 0 ? a + world.bodies[c.body_b].gap_offset : a;
+}
+
 ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
                                       const Island& island, double dt, const std::vector<Vec3>& applied) {
   if (!applied.empty() && applied.size() != world.bodies.size())
@@ -75,6 +88,7 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
     Vec3 f(b.mass * world.gravity.x(), b.mass * world.gravity.y(), 0.0);
     if (!applied.empty()) f += applied[s.bodies[k]];
     s.v_star.segment<3>(3 * k) = b.velocity + dt * s.minv.segment<3>(3 * k).cwiseProduct(f);
+    if (has_velocity_residual(b)) s.v_star.segment<3>(3 * k) += velocity_residual_term(b);
   }
   const Index nc = s.num_contacts();
   s.phi.resize(nc);
@@ -83,7 +97,8 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
   for (Index i = 0; i < nc; ++i) {
     const Contact& c = contacts[s.contacts[i]];
     if (block[c.body_a] < 0) throw InputError("contact body_a is not in the island");
-    s.phi(i) = c.gap;
+    const double offset = contact_gap_offset(world, c);
+    s.phi(i) = offset == 0.0 ? c.gap : c.gap + offset;
     const Vec2 n = c.normal, t(-n.y(), n.x());
     const Vec2 ra = c.point - world.bodies[c.body_a].pose.head<2>();
     const bool b_dynamic = world.is_dynamic(c.body_b);

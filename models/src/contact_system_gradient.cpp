@@ -215,6 +215,7 @@ void accumulate_world_gradient(const World& world, const std::vector<Contact>& c
     const double m2 = b.mass * b.mass, i2 = b.inertia * b.inertia;
     gb.mass -= (ct.minv(j) + ct.minv(j + 1)) / m2;
     gb.inertia -= ct.minv(j + 2) / i2;
+    gb.velocity_residual += ct.v_star.segment<3>(j) * velocity_residual_features(b).transpose();
     if (!applied.empty()) {
       const Vec3& u = applied[s.bodies[k]];
       gb.mass -= dt * (ct.v_star(j) * u.x() + ct.v_star(j + 1) * u.y()) / m2;
@@ -232,6 +233,8 @@ void accumulate_world_gradient(const World& world, const std::vector<Contact>& c
     const Contact& c = contacts[s.contacts[i]];
     if (block[c.body_a] < 0 || (world.is_dynamic(c.body_b) && block[c.body_b] < 0))
       throw InputError("accumulate_world_gradient: s.contacts[" + std::to_string(i) + "]: a body is not in the island");
+    g.bodies[c.body_a].gap_offset += ct.phi(i);
+    if (c.body_b >= 0) g.bodies[c.body_b].gap_offset += ct.phi(i);
     pull_back_contact(world, contacts[s.contacts[i]], i, friction_row[static_cast<std::size_t>(i)], block, ct, g);
   }
 }
@@ -254,6 +257,7 @@ ContactSystem contact_system_tangent(const World& world, const std::vector<Conta
     out.minv.segment<3>(j) << dm, dm, di;
     const Vec3 u = applied.empty() ? Vec3::Zero() : applied[s.bodies[k]];
     out.v_star.segment<3>(j) << dt * u.x() * dm, dt * u.y() * dm, dt * u.z() * di;
+    out.v_star.segment<3>(j) += db.velocity_residual * velocity_residual_features(b);
   }
   for (Index f = 0; f < s.num_friction(); ++f) out.mu(f) = direction.contact_mu[s.contacts[s.friction_rows[f]]];
   std::vector<Index> friction_row(static_cast<std::size_t>(s.num_contacts()), -1);
@@ -267,7 +271,8 @@ ContactSystem contact_system_tangent(const World& world, const std::vector<Conta
     const Vec2AD& n = lc.geo.normal;
     const Vec2AD t(-n.y(), n.x());
     const Index fr = friction_row[static_cast<std::size_t>(i)];
-    out.phi(i) = lc.geo.gap.derivatives().dot(dir);
+    out.phi(i) = lc.geo.gap.derivatives().dot(dir) + direction.bodies[c.body_a].gap_offset +
+                 (c.body_b >= 0 ? direction.bodies[c.body_b].gap_offset : 0.0);
     const Vec2AD ra = lc.geo.point - world.bodies[c.body_a].pose.head<2>().cast<AD>();
     push_row(out.Jn, i, block[c.body_a], n, ra, 1.0, dir);
     if (fr >= 0) push_row(out.Jt, fr, block[c.body_a], t, ra, 1.0, dir);

@@ -78,6 +78,8 @@ Simulator::Simulator(World world, SimulatorSettings settings) : world_(std::move
       throw InputError("bodies[" + std::to_string(i) + "]: mass and inertia must be > 0");
     if (!b.pose.allFinite() || !b.velocity.allFinite())
       throw InputError("bodies[" + std::to_string(i) + "]: pose and velocity must be finite");
+    if (!std::isfinite(b.gap_offset) || !b.velocity_residual.allFinite())
+      throw InputError("bodies[" + std::to_string(i) + "]: gap_offset and velocity_residual must be finite");
   }
   check_extreme_values();
 }
@@ -200,10 +202,16 @@ double speculative_contact_margin(const World& world, const SimulatorSettings& s
     for (const Vec2& p : b.shape.vertices) r = std::max(r, p.norm());
     Vec3 f(b.mass * world.gravity.x(), b.mass * world.gravity.y(), 0.0);
     if (!applied.empty()) f += applied[i];
-    const Vec3 free = b.velocity + dt * Vec3(f(0) / b.mass, f(1) / b.mass, f(2) / b.inertia);
+    Vec3 free = b.velocity + dt * Vec3(f(0) / b.mass, f(1) / b.mass, f(2) / b.inertia);
+    if (has_velocity_residual(b)) free += velocity_residual_term(b);
     for (const Vec3& v : {b.velocity, free}) fastest = std::max(fastest, v.head<2>().norm() + std::abs(v(2)) * r);
   }
-  return settings.margin + 2.0 * fastest * dt;
+  // Negative gap offsets (RigidBody::gap_offset) make contacts act before the shapes meet:
+  // a pair of bodies up to twice the most negative offset earlier.
+  double most_negative = 0.0;
+  for (const RigidBody& b : world.bodies) most_negative = std::max(most_negative, -b.gap_offset);
+  const double margin = settings.margin + 2.0 * fastest * dt;
+  return most_negative > 0.0 ? margin + 2.0 * most_negative : margin;
 }
 
 StepContacts find_step_contacts(const World& world, const SimulatorSettings& settings,
@@ -397,7 +405,10 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     if (body.is_static || in_island[b]) continue;
     Vec3 f(body.mass * world.gravity.x(), body.mass * world.gravity.y(), 0.0);
     if (!applied.empty()) f += applied[b];
+    const bool residual = has_velocity_residual(body);
+    const Vec3 r = residual ? velocity_residual_term(body) : Vec3::Zero();  // at the step's start velocity
     body.velocity += dt * Vec3(f(0) / body.mass, f(1) / body.mass, f(2) / body.inertia);
+    if (residual) body.velocity += r;  // v* = v + Δt M⁻¹f + W f, as assemble_contact_system
   }
   for (RigidBody& body : world.bodies)
     if (!body.is_static) body.pose += dt * body.velocity;

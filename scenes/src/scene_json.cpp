@@ -76,9 +76,23 @@ FrictionTable read_friction(const Json& j, const std::string& path) {
   return table;
 }
 
+// "velocity_residual": 3 rows (vx, vy, ω) of 4 numbers (per vx, vy, ω and 1).
+Mat34 read_velocity_residual(const Json& j, const std::string& path) {
+  if (!j.is_array() || j.size() != 3) fail(path, "expected 3 rows of 4 numbers");
+  Mat34 w;
+  for (std::size_t r = 0; r < 3; ++r) {
+    const std::string rp = element(path, r);
+    if (!j[r].is_array() || j[r].size() != 4) fail(rp, "expected 4 numbers");
+    for (std::size_t c = 0; c < 4; ++c)
+      w(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = scene_json::number(j[r][c], element(rp, c));
+  }
+  return w;
+}
+
 RigidBody read_body(const Json& j, const std::string& path) {
   scene_json::expect_object(j, path, {"vertices", "density", "mass", "inertia", "position", "angle",
-                                      "velocity", "angular_velocity", "material", "static"});
+                                      "velocity", "angular_velocity", "material", "static", "gap_offset",
+                                      "velocity_residual"});
   RigidBody body;
   const std::string vpath = member(path, "vertices");
   const Json& vs = scene_json::array(scene_json::require(j, path, "vertices"), vpath);
@@ -130,6 +144,8 @@ RigidBody read_body(const Json& j, const std::string& path) {
   const Json* w = find(j, "angular_velocity");
   body.velocity = Vec3(velocity.x(), velocity.y(), w ? scene_json::number(*w, member(path, "angular_velocity")) : 0.0);
   body.material = material(j, path);
+  if (const Json* g = find(j, "gap_offset")) body.gap_offset = scene_json::number(*g, member(path, "gap_offset"));
+  if (const Json* w = find(j, "velocity_residual")) body.velocity_residual = read_velocity_residual(*w, member(path, "velocity_residual"));
   return body;
 }
 
@@ -269,6 +285,17 @@ std::string write_scene(const Scene& scene) {
     body["angular_velocity"] = finite(b.velocity.z(), member(path, "angular_velocity"));
     body["material"] = b.material;
     body["static"] = b.is_static;
+    if (b.gap_offset != 0.0) body["gap_offset"] = finite(b.gap_offset, member(path, "gap_offset"));
+    if ((b.velocity_residual.array() != 0.0).any()) {
+      Json rows = Json::array();
+      for (Eigen::Index r = 0; r < 3; ++r) {
+        Json row = Json::array();
+        for (Eigen::Index c = 0; c < 4; ++c)
+          row.push_back(finite(b.velocity_residual(r, c), element(element(member(path, "velocity_residual"), static_cast<std::size_t>(r)), static_cast<std::size_t>(c))));
+        rows.push_back(std::move(row));
+      }
+      body["velocity_residual"] = std::move(rows);
+    }
     bodies.push_back(std::move(body));
   }
   root["bodies"] = std::move(bodies);

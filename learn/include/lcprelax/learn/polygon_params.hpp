@@ -21,6 +21,7 @@
 //   3 + 2N "ground_height" (identity, m), 4 + 2N "ground_angle" (identity, rad).
 // Each kind can be learned or held (PolygonLearnFlags → Parameter::learn); held parameters
 // keep their value (their gradient entries are still computed, chain_gradient zeroes them).
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/parameters.hpp>
 #include <lcprelax/learn/scene_params.hpp>
 #include <lcprelax/world/world.hpp>
@@ -55,8 +56,13 @@ HalfPlane ground_half_plane(double height, double angle);
 /// Which parameter kinds are learned: the same kinds as a scene's (scene_params.hpp).
 using PolygonLearnFlags = SceneLearnFlags;
 
-/// parse_scene_learn_flags (scene_params.hpp).
-inline PolygonLearnFlags parse_polygon_learn_flags(const std::string& list) { return parse_scene_learn_flags(list); }
+/// parse_scene_learn_flags (scene_params.hpp), without "gap" and "residual" (scene learning
+/// only): InputError("--learn: ...") for them.
+inline PolygonLearnFlags parse_polygon_learn_flags(const std::string& list) {
+  const PolygonLearnFlags f = parse_scene_learn_flags(list);
+  if (f.gap || f.residual) throw InputError("--learn: gap and residual are learned by `learn scene` only");
+  return f;
+}
 
 /// Index arithmetic of the layout above.
 struct PolygonLayout {

@@ -12,9 +12,10 @@
 //      (step_loss_hard.hpp, step_loss_relaxed.hpp, step_loss_convex.hpp), pulled back to the
 //      world's primitives (accumulate_world_gradient, models/contact_system_gradient.hpp),
 //      then to θ (SceneParameterMap::gradient): sparse throughout, O(contacts + bodies);
-//   4. dynamic bodies in no island fly freely, v⁺ = v* = v + Δt(g + u_xy/m, u_τ/I); they add
-//      ‖v* − v̄‖² ((m/s)², weight 1 for every method), whose gradient reaches mass and
-//      inertia through the applied forces (a pushed body in flight identifies its mass).
+//   4. dynamic bodies in no island fly freely, v⁺ = v* = v + Δt(g + u_xy/m, u_τ/I) + W f
+//      (W f the velocity residual, RigidBody::velocity_residual); they add ‖v* − v̄‖² ((m/s)²,
+//      weight 1 for every method), whose gradient reaches mass and inertia through the
+//      applied forces (a pushed body in flight identifies its mass), and W through f.
 // ℓᵢ is the sum over islands and free bodies. A transition in which any island's solve has
 // no solution (ContactStatus failed) fails as a whole (SampleResult::ok = false, message
 // naming the island): a failed island is never averaged in. Counts of islands and failures

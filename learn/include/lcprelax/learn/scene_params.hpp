@@ -13,6 +13,14 @@
 //   per half-plane h: "half_plane<h>.angle" (identity, rad: outward normal (cos ψ, sin ψ);
 //                     the floor y ≥ 0 has ψ = π/2), "half_plane<h>.offset" (identity, m)
 //   per segment s: "segment<s>.a.x", "segment<s>.a.y", "segment<s>.b.x", "segment<s>.b.y" (m)
+//   structured nonphysical terms, in the layout only when learned (flags gap, residual),
+//   after the segments, so that a run without them keeps its layout and random draws:
+//   per class c "class<c>.gap" (identity, m): RigidBody::gap_offset of the class's bodies,
+//   added to the gap φ of each of their contacts (a contact of classes a and b gets
+//   gap_a + gap_b; > 0 lets bodies sink in); then per class c the 12 entries
+//   "class<c>.residual<r><j>" (identity; r = 0, 1, 2 the row vx, vy, ω; j = 0..3 the
+//   feature vx, vy, ω, 1): W of v* += W (vx, vy, ω, 1) (RigidBody::velocity_residual, units
+//   there). Held, they are not in θ and every body keeps the world's values.
 // Flags choose which kinds are learned (Parameter::learn); held parameters keep their
 // values. Static bodies have no class (they are static geometry held at their values).
 //
@@ -33,10 +41,12 @@ namespace lcprelax::learn {
 /// Which parameter kinds are learned.
 struct SceneLearnFlags {
   bool mu = true, mass = true, inertia = true, vertices = true, ground = false;
+  bool gap = false, residual = false;  ///< class<c>.gap, class<c>.residual<r><j>
 };
 
-/// Parses a comma-separated list of "mu", "mass", "inertia", "vertices", "ground" (each at
-/// most once, at least one); throws InputError("--learn: ...") naming an unknown entry.
+/// Parses a comma-separated list of "mu", "mass", "inertia", "vertices", "ground", "gap",
+/// "residual" (each at most once, at least one); throws InputError("--learn: ...") naming
+/// an unknown entry.
 SceneLearnFlags parse_scene_learn_flags(const std::string& list);
 
 struct SceneParameterSettings {
@@ -68,10 +78,10 @@ class SceneParameterMap {
   const std::vector<int>& body_class() const { return body_class_; }
   int num_classes() const { return static_cast<int>(class_vertices_.size()); }
 
-  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end };
+  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end, gap, residual };
   Kind kind(Index k) const { return kind_[static_cast<std::size_t>(k)]; }
-  /// Length scale of parameter k (m), also its Parameter::scale (ξ = θ/scale): its class's radius for vertices, the mean class radius
-  /// for offsets and segment ends, 1 otherwise.
+  /// Length scale of parameter k (m), also its Parameter::scale (ξ = θ/scale): its class's radius for vertices and
+  /// gaps, the mean class radius for offsets and segment ends, 1 otherwise (residual entries included).
   double length_scale(Index k) const { return scale_[static_cast<std::size_t>(k)]; }
 
  private:
@@ -84,6 +94,7 @@ class SceneParameterMap {
   std::vector<Index> class_first_;    ///< index of "class<c>.mass"
   std::vector<std::pair<int, int>> pairs_;  ///< material pairs with their own μ (per-pair mode)
   Index first_half_plane_ = 0, first_segment_ = 0;
+  Index first_gap_ = 0, first_residual_ = 0;  ///< end of the segments; end of the gaps
   Index size_ = 0;
   std::vector<Kind> kind_;
   std::vector<double> scale_;
@@ -92,13 +103,15 @@ class SceneParameterMap {
 /// Deterministic perturbation of θ for initial values: log parameters (μ, mass, inertia)
 /// scaled by (1 ± fraction), vertex coordinates moved by ±fraction·0.5·(class radius),
 /// half-plane offsets and segment ends by ±fraction·0.5·(mean class radius), angles by
-/// ±0.1·fraction rad; random signs from std::mt19937_64(seed) in layout order; only learned
-/// parameters move.
+/// ±0.1·fraction rad, gaps by ±fraction·0.5·(class radius), residual entries by ±0.1·fraction
+/// (in their own units); random signs from std::mt19937_64(seed) in layout order; only
+/// learned parameters move.
 ParameterSet perturb_scene_parameters(const ParameterSet& truth, const SceneParameterMap& map, double fraction,
                                       std::uint64_t seed);
 
 /// Relative error of parameter k: |Δ|/|truth| for log parameters, |Δ|/(class radius) for
-/// vertex coordinates, |Δ|/(mean class radius) for offsets and segment ends, |Δ| (rad) for angles.
+/// vertex coordinates and gaps, |Δ|/(mean class radius) for offsets and segment ends, |Δ| (rad) for
+/// angles, |Δ| (the entry's units) for residual entries.
 double scene_relative_error(const ParameterSet& estimate, const ParameterSet& truth, const SceneParameterMap& map,
                             Index k);
 

@@ -13,6 +13,11 @@
 // the negated row (with r_b) on a dynamic body b; the tangent row likewise with t. Jn has
 // one row per contact; Jt has one row per contact with μ > 0 only (no tangential
 // unknowns where μ = 0). Impulses λ act as M Δv = Jnᵀ λn + Jtᵀ λt.
+//
+// Nonphysical terms (RigidBody::gap_offset, RigidBody::velocity_residual, world.hpp): the
+// gap of contact c is φ = c.gap + gap_offset_a (+ gap_offset_b when b is a body), and v* of
+// a body gets + W (vx, vy, ω, 1). Both are skipped where they are exactly 0, so a world
+// without them assembles bit for bit as before.
 #include <lcprelax/world/world.hpp>
 #include <lcprelax/sparse/types.hpp>
 
@@ -53,6 +58,15 @@ struct ContactSystem {
 /// N·m, or empty).
 ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
                                       const Island& island, double dt, const std::vector<Vec3>& applied = {});
+
+/// The residual's features of a body: f = (vx, vy, ω, 1) at its current velocity.
+Eigen::Vector4d velocity_residual_features(const RigidBody& body);
+/// Whether a body's velocity residual is nonzero (any entry ≠ 0).
+bool has_velocity_residual(const RigidBody& body);
+/// W f, the residual's share of the body's free velocity (m/s, m/s, rad/s).
+Vec3 velocity_residual_term(const RigidBody& body);
+/// The offset contact c's gap gets (m): body a's gap_offset, plus body b's when body_b ≥ 0.
+double contact_gap_offset(const World& world, const Contact& c);
 
 /// W = J M⁻¹ Jᵀ for J = [Jn; Jt] (rows: contacts, then friction rows).
 SparseMatrix delassus(const ContactSystem& s);

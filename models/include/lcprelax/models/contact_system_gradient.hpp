@@ -20,7 +20,10 @@
 // forward-mode automatic differentiation (Eigen's AutoDiffScalar) over those local
 // primitives, then the rows (n, r × n) and (t, r × t), r = p − x_body, t = (−n_y, n_x).
 // M⁻¹ gives ∂/∂m = −(ct_x + ct_y)/m², ∂/∂I = −ct_ω/I²; v* gives ∂/∂m = −Δt ct·u_xy/m²,
-// ∂/∂I = −Δt ct_ω u_τ/I² (v + Δt g does not depend on m).
+// ∂/∂I = −Δt ct_ω u_τ/I² (v + Δt g does not depend on m). The nonphysical terms
+// (contact_system.hpp): φ_c = gap_c + gap_offset_a + gap_offset_b gives ∂/∂gap_offset of a
+// body = Σ ct_φ over its contacts; v* += W f gives ∂/∂W = ct_v* fᵀ (f = (vx, vy, ω, 1)),
+// for every body of the island whether its W is zero or not.
 //
 // Half-plane normals: the derivative is with respect to the normal's two components taken
 // as free (the contact formulas use the normal as given, without normalizing), offset
@@ -59,8 +62,10 @@ struct WorldGradient {
     std::vector<Vec2> vertices;  ///< per body-frame vertex (m⁻¹·unit of ℓ)
     double mass = 0.0;           ///< per kg
     double inertia = 0.0;        ///< per kg·m²
+    double gap_offset = 0.0;     ///< per m of RigidBody::gap_offset
+    Mat34 velocity_residual = Mat34::Zero();  ///< per unit of each RigidBody::velocity_residual entry
   };
-  std::vector<Body> bodies;               ///< per world body (static bodies: vertices only)
+  std::vector<Body> bodies;               ///< per world body (static bodies: vertices and gap_offset only)
   std::vector<Vec2> half_plane_normal;    ///< per half-plane: ∂ℓ/∂normal (the unit normal's components held free)
   std::vector<double> half_plane_offset;  ///< per half-plane
   std::vector<std::array<Vec2, 2>> segment_ends;  ///< per segment: ∂ℓ/∂a, ∂ℓ/∂b

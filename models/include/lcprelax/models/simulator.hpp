@@ -126,7 +126,8 @@ struct StepContacts {
 
 /// The speculative contact margin of a step (m): settings.margin + 2Δt·max over the dynamic
 /// bodies and over {v, v* = v + Δt M⁻¹f} of (|v_xy| + |ω|·r), r the body's largest vertex
-/// radius, f gravity plus `applied` (one (fx, fy, τ) per body, or empty).
+/// radius, f gravity plus `applied` (one (fx, fy, τ) per body, or empty); v* includes the
+/// velocity residual W f, and the margin grows by 2·max(0, −gap_offset) over the bodies.
 double speculative_contact_margin(const World& world, const SimulatorSettings& settings,
                                   const std::vector<Vec3>& applied = {});
 

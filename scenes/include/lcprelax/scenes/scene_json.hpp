@@ -31,7 +31,11 @@
 //       "velocity": [vx, vy],               // m/s of the centre of mass, default [0, 0]
 //       "angular_velocity": 0.0,            // rad/s, default 0
 //       "material": 0,                      // integer ≥ 0, default 0
-//       "static": false                     // default false
+//       "static": false,                    // default false
+//       "gap_offset": 0.0,                  // m, default 0 (RigidBody::gap_offset): added
+//                                           // to the gap of the body's contacts
+//       "velocity_residual": [[..4], [..4], [..4]]  // default 0: W of v* += W (vx, vy, ω, 1),
+//                                           // rows vx, vy, ω (RigidBody::velocity_residual)
 //     }],
 //     "half_planes": [{"normal": [nx, ny], "offset": d, "material": k}],
 //     "segments": [{"a": [x, y], "b": [x, y], "material": k}]
@@ -47,6 +51,8 @@
 // - Half-plane: free space is {p : normal·p ≥ offset}; "normal" must be non-zero and is
 //   normalized (normal and offset are both divided by |normal|); "offset" default 0.
 // - Segment: static, two-sided; a ≠ b.
+// - "gap_offset" and "velocity_residual" are nonphysical terms a learned model may carry
+//   (world/world.hpp); the writer writes them only where they are nonzero.
 // Errors: lcprelax::InputError whose message names the field path, e.g.
 //   "bodies[3].vertices: vertices are clockwise", "bodies[0].mass: must be > 0",
 //   "unknown key 'densty' in bodies[2]", "dt: expected a number, got string",

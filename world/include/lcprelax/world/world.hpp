@@ -19,6 +19,8 @@ namespace lcprelax {
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
+/// 3×4, unaligned (a member of RigidBody, which lives in std::vector).
+using Mat34 = Eigen::Matrix<double, 3, 4, Eigen::DontAlign>;
 
 struct Polygon {
   std::vector<Vec2> vertices;  ///< body frame, counter-clockwise, centroid at the origin (m)
@@ -32,6 +34,22 @@ struct RigidBody {
   Vec3 velocity = Vec3::Zero();  ///< (vx, vy, ω)
   int material = 0;              ///< index into the friction table
   bool is_static = false;        ///< static polygons never move and have no unknowns
+  // Structured nonphysical terms (learned per shape class, learn/scene_params.hpp; both 0 by
+  // default, and then nothing changes, bit for bit). They act where a step's contact problem
+  // is assembled (models/contact_system.hpp), so the Simulator and learning agree.
+  /// Gap offset (m), added to the gap φ of every contact row this body takes part in: a
+  /// contact of bodies a and b gets φ + gap_offset_a + gap_offset_b (a static body's counts
+  /// too; half-planes and segments have none). > 0 lets the body sink that far into what it
+  /// touches, < 0 keeps it that far off. Contacts are still found on the geometric gap (the
+  /// Simulator widens its margin by twice the most negative offset). The LCP model's velocity
+  /// step uses max(φ, 0)/Δt, so there an offset acts only where φ + offsets > 0, and a
+  /// negative effective gap through the position projection (post-stabilization) only.
+  double gap_offset = 0.0;
+  /// Linear residual on the free velocity: v* += W f with f = (vx, vy, ω, 1) the body's
+  /// velocity at the start of the step (a free-flying body's next velocity gets it too).
+  /// Rows (vx, vy, ω); units: rows 0–1 m/s, row 2 rad/s per unit of f's entry (column 3:
+  /// m/s, m/s, rad/s). Dynamic bodies only.
+  Mat34 velocity_residual = Mat34::Zero();
 };
 
 /// Static half-plane: free space is {p : normal·p ≥ offset}, solid below it.

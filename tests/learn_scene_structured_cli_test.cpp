@@ -1,0 +1,76 @@
+// `lcprelax learn scene --learn ...,gap` (docs/cli.md): the structured nonphysical kinds on
+// the command line.
+// - a scene file whose bodies carry "gap_offset" generates data with it; --learn mu,mass,gap
+//   lists "class<c>.gap" in true / initial / learned / relative_error like the other
+//   parameters (true = the file's offset; relative error |Δ|/class radius), and a short run
+//   exits 0;
+// - without gap in --learn no gap parameter appears (the default output is unchanged);
+// - an unknown --learn entry, and gap for learn polygon, exit 2 naming the entry.
+#include "cli_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
+
+namespace lcprelax {
+namespace {
+
+using namespace testing_support;
+
+const std::string kStack = std::string(LCPRELAX_TEST_DATA_DIR) + "/scenes/box_stack.json";
+
+// box_stack.json with every body's "gap_offset" set to `offset`, written to a temporary file.
+std::string stack_with_offset(double offset) {
+  std::ifstream in(kStack);
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (auto& body : j["bodies"]) body["gap_offset"] = offset;
+  const std::string path = temp_path("stack_gap.json");
+  std::ofstream(path) << j.dump();
+  return path;
+}
+
+TEST(CliLearnSceneStructured, GapIsListedLikeTheOtherParameters) {
+  const std::string scene = stack_with_offset(4e-3);
+  const std::string common = "learn scene --scene '" + scene + "' --steps 20 --learn mu,mass,gap --json";
+  const CliRun r = run_cli(common + " --epochs 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["true"].contains("class0.gap")) << j.dump();
+  EXPECT_EQ(j["true"]["class0.gap"].get<double>(), 4e-3);
+  EXPECT_NE(j["initial"]["class0.gap"].get<double>(), 4e-3) << "--perturb moves the offset";
+  EXPECT_EQ(j["learned"].size(), j["relative_error"].size());
+  // --perturb 0.25 (default) moves it by 0.25/2 of its class radius: relative error 0.125.
+  EXPECT_NEAR(j["relative_error"].value("class0.gap", -1.0), 0.125, 1e-12) << j["relative_error"].dump();
+
+  // The convex loss: with the LCP model (hard, relaxed) a negative effective gap has no
+  // velocity-level term (max(φ, 0)/Δt) and, at this initial offset, no gradient.
+  const CliRun trained = run_cli(common + " --epochs 2 --method convex");
+  ASSERT_EQ(trained.exit_code, 0) << trained.err << trained.out;
+  const auto t = nlohmann::json::parse(trained.out);
+  EXPECT_TRUE(t["learned"].contains("class0.gap"));
+  EXPECT_NE(t["learned"]["class0.gap"], t["initial"]["class0.gap"]) << "training moves the offset";
+  EXPECT_EQ(t["failed"], 0);
+
+  const CliRun plain = run_cli("learn scene --scene '" + scene + "' --steps 20 --learn mu,mass --epochs 0 --json");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find(".gap"), std::string::npos) << "gap not learned: not listed";
+  std::filesystem::remove(scene);
+}
+
+void expect_bad_input(const std::string& args, const std::string& needle) {
+  const CliRun r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err << r.out;
+  EXPECT_TRUE(invalid_input_json(r.out)) << r.out;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err << " (expected '" << needle << "')";
+}
+
+TEST(CliLearnSceneStructured, UnknownOrMisplacedKindsExitTwo) {
+  expect_bad_input("learn scene --learn mu,gaps --json", "'gaps'");
+  expect_bad_input("learn scene --learn gap,gap --json", "twice");
+  expect_bad_input("learn polygon --learn mu,gap --json", "learn scene");
+}
+
+}  // namespace
+}  // namespace lcprelax
