@@ -1,11 +1,13 @@
-// `lcprelax learn scene --learn ...,gap` (docs/cli.md): the structured nonphysical kinds on
-// the command line.
+// `lcprelax learn scene --learn ...,gap,residual` (docs/cli.md): the structured nonphysical
+// kinds on the command line.
 // - a scene file whose bodies carry "gap_offset" generates data with it; --learn mu,mass,gap
 //   lists "class<c>.gap" in true / initial / learned / relative_error like the other
 //   parameters (true = the file's offset; relative error |Δ|/class radius), and a short run
 //   exits 0;
 // - without gap in --learn no gap parameter appears (the default output is unchanged);
-// - an unknown --learn entry, and gap for learn polygon, exit 2 naming the entry.
+// - "velocity_residual" likewise: --learn mu,residual lists the 12 entries per class,
+//   true = the file's W, relative error |Δ| (0.1·F from --perturb F);
+// - an unknown --learn entry, and gap or residual for learn polygon, exit 2 naming the entry.
 #include "cli_support.hpp"
 
 #include <gtest/gtest.h>
@@ -59,6 +61,24 @@ TEST(CliLearnSceneStructured, GapIsListedLikeTheOtherParameters) {
   std::filesystem::remove(scene);
 }
 
+TEST(CliLearnSceneStructured, ResidualIsListedLikeTheOtherParameters) {
+  std::ifstream in(kStack);
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (auto& body : j["bodies"]) body["velocity_residual"] = {{-0.01, 0, 0, 0.002}, {0, 0, 0, 0}, {0, 0, -0.02, 0}};
+  const std::string scene = temp_path("stack_residual.json");
+  std::ofstream(scene) << j.dump();
+  const CliRun r = run_cli("learn scene --scene '" + scene + "' --steps 20 --learn mu,residual --epochs 0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  const auto out = nlohmann::json::parse(r.out);
+  EXPECT_EQ(out["true"]["class0.residual03"].get<double>(), 0.002);
+  EXPECT_EQ(out["true"]["class0.residual22"].get<double>(), -0.02);
+  EXPECT_EQ(out["true"]["class0.residual11"].get<double>(), 0.0);
+  EXPECT_NEAR(out["relative_error"].value("class0.residual03", -1.0), 0.025, 1e-12) << "0.1 * 0.25, absolute";
+  EXPECT_EQ(out["learned"].size(), out["relative_error"].size());
+  EXPECT_EQ(out["learned"].size() % 12, 1u) << "mu and 12 entries per class";
+  std::filesystem::remove(scene);
+}
+
 void expect_bad_input(const std::string& args, const std::string& needle) {
   const CliRun r = run_cli(args);
   EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err << r.out;
@@ -70,6 +90,8 @@ TEST(CliLearnSceneStructured, UnknownOrMisplacedKindsExitTwo) {
   expect_bad_input("learn scene --learn mu,gaps --json", "'gaps'");
   expect_bad_input("learn scene --learn gap,gap --json", "twice");
   expect_bad_input("learn polygon --learn mu,gap --json", "learn scene");
+  expect_bad_input("learn polygon --learn residual --json", "learn scene");
+  expect_bad_input("learn scene --learn mu,residuals --json", "'residuals'");
 }
 
 }  // namespace
