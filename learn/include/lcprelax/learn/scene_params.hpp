@@ -7,7 +7,8 @@
 //   "mu" (log)                       the friction table's default μ; with per-pair friction
 //                                    also "mu[a,b]" (log) per listed material pair (a ≤ b);
 //                                    without it every pair takes "mu" (one global μ)
-//   per shape class c (bodies with identical shape, mass and inertia; scene_shape_classes):
+//   per shape class c (bodies with identical shape, mass, inertia, gap offset and velocity
+//   residual; scene_shape_classes):
 //   "class<c>.mass" (log, kg), "class<c>.inertia" (log, kg·m²),
 //   "class<c>.vertex<i>.x", "class<c>.vertex<i>.y" (identity, m, body frame)
 //   per half-plane h: "half_plane<h>.angle" (identity, rad: outward normal (cos ψ, sin ψ);
@@ -54,7 +55,8 @@ struct SceneParameterSettings {
   bool mu_per_pair = false;  ///< one μ per listed material pair, else one global μ
 };
 
-/// Shape class of every body: dynamic bodies with identical vertices, mass and inertia share
+/// Shape class of every body: dynamic bodies with identical vertices, mass, inertia, gap_offset
+/// and velocity_residual (world.hpp; 0 unless a scene sets them) share
 /// a class, numbered 0, 1, … in order of first appearance; static bodies get −1.
 std::vector<int> scene_shape_classes(const World& world);
 

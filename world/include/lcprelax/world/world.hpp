@@ -41,9 +41,9 @@ struct RigidBody {
   /// contact of bodies a and b gets φ + gap_offset_a + gap_offset_b (a static body's counts
   /// too; half-planes and segments have none). > 0 lets the body sink that far into what it
   /// touches, < 0 keeps it that far off. Contacts are still found on the geometric gap (the
-  /// Simulator widens its margin by twice the most negative offset). The LCP model's velocity
-  /// step uses max(φ, 0)/Δt, so there an offset acts only where φ + offsets > 0, and a
-  /// negative effective gap through the position projection (post-stabilization) only.
+  /// Simulator widens its margin by twice the most negative offset). Both contact models close
+  /// gaps at velocity level by max(φ, 0)/Δt: a negative effective gap φ + offsets acts through
+  /// the position projection (post-stabilization) and the convex model's softening only.
   double gap_offset = 0.0;
   /// Linear residual on the free velocity: v* += W f with f = (vx, vy, ω, 1) the body's
   /// velocity at the start of the step (a free-flying body's next velocity gets it too).
