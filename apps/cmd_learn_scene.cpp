@@ -31,6 +31,7 @@
 // Exit 0; 1 when more than 5% of the transitions fail at the learned θ; 2 on bad input.
 #include "cli_common.hpp"
 #include "cmd_learn_checkpoint.hpp"
+#include "learn_scene_portfolio.hpp"
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/portfolio.hpp>
@@ -248,27 +249,10 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   learn::TrainResult result;
   learn::PortfolioResult portfolio;
   if (o.portfolio) {
-    // Recipes from the same initial values (learn/portfolio.hpp): the optimizer alone; Adam
-    // first (--lr, --lr-decay, --portfolio-adam-epochs) then the optimizer; and, for the
-    // convex loss, a continuation: the optimizer on the default (smoother, biased) convex loss
-    // for --portfolio-smooth-epochs, then on this run's loss. The lowest training data loss
-    // is kept.
-    learn::TrainSettings adam = t;
-    adam.epochs = o.portfolio_adam_epochs;
-    adam.optimizer.kind = learn::OptimizerKind::adam;
-    adam.optimizer.lm_geodesic_acceleration = false;
-    std::vector<learn::TrainRecipe> recipes = {{o.optimizer, {{t}}}, {"adam+" + o.optimizer, {{adam}, {t}}}};
-    std::unique_ptr<learn::SceneObjective> smooth;
-    if (ls.method == learn::LossMethod::convex) {
-      learn::SceneLossSettings smooth_settings = ls;
-      smooth_settings.convex = learn::ConvexStepLossSettings{};
-      smooth_settings.convex.softening = ls.convex.softening;
-      smooth = std::make_unique<learn::SceneObjective>(data, map, smooth_settings);
-      learn::TrainSettings first = t;
-      first.epochs = o.portfolio_smooth_epochs;
-      recipes.push_back({"smooth+" + o.optimizer, {{first, smooth.get()}, {t}}});
-    }
-    portfolio = learn::train_portfolio(objective, scene_objective, theta, training, validation, recipes);
+    // Recipes from the same initial values (learn_scene_portfolio.hpp), lowest training loss kept.
+    const ScenePortfolio recipes =
+        make_scene_portfolio(data, map, ls, t, {o.optimizer, o.portfolio_adam_epochs, o.portfolio_smooth_epochs});
+    portfolio = learn::train_portfolio(objective, scene_objective, theta, training, validation, recipes.recipes);
     result = portfolio.result;
   } else if (o.epochs > 0) {
     result = learn::train(objective, theta, training, validation, t);
@@ -373,12 +357,13 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_flag("--portfolio", o->portfolio,
                "train several recipes from the same initial values, the --optimizer alone, adam (--lr, --lr-decay) then "
-               "the --optimizer, and (convex) the --optimizer on the default convex loss then on this one; keep the "
-               "lowest training loss (JSON: portfolio, chosen_recipe)");
+               "the --optimizer, and a continuation: the --optimizer on the default convex loss (convex) or on the relaxed "
+               "loss without proximal centres (relaxed), then on this one; keep the lowest training loss (JSON: "
+               "portfolio, chosen_recipe)");
   app->add_option("--portfolio-adam-epochs", o->portfolio_adam_epochs, "--portfolio: epochs of its adam stage")
       ->capture_default_str();
   app->add_option("--portfolio-smooth-epochs", o->portfolio_smooth_epochs,
-                  "--portfolio, --method convex: epochs of the continuation's first stage, on the default convex loss")
+                  "--portfolio, --method convex or relaxed: epochs of the continuation's first stage")
       ->capture_default_str();
   app->add_flag("--lm-geodesic", o->lm_geodesic,
                "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");

@@ -169,6 +169,29 @@ TEST(CliLearnSceneOptions, PortfolioKeepsTheRecipeWithTheLowestLoss) {
                    "--portfolio");
 }
 
+// The relaxed loss's portfolio has the continuation biased+OPT: OPT on the relaxed loss without
+// proximal centres (every evaluation centred at 0), then on the run's loss; the hard loss has
+// no continuation. The kept recipe is the one with the lowest training loss.
+TEST(CliLearnSceneOptions, RelaxedPortfolioHasTheBiasedContinuation) {
+  const std::string common = "learn scene --bodies 8 --steps 20 --threads 2 --json --optimizer lbfgs --epochs 2 "
+                             "--portfolio --portfolio-adam-epochs 2 --portfolio-smooth-epochs 2 --learn mu,mass";
+  const CliRun relaxed = run_cli(common + " --method relaxed");
+  ASSERT_EQ(relaxed.exit_code, 0) << relaxed.err;
+  const auto j = nlohmann::json::parse(relaxed.out);
+  ASSERT_EQ(j["portfolio"].size(), 3u) << relaxed.out;
+  EXPECT_EQ(j["portfolio"][0]["recipe"], "lbfgs");
+  EXPECT_EQ(j["portfolio"][1]["recipe"], "adam+lbfgs");
+  EXPECT_EQ(j["portfolio"][2]["recipe"], "biased+lbfgs");
+  EXPECT_NE(j["portfolio"][2]["final_loss"].get<double>(), j["portfolio"][0]["final_loss"].get<double>());
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < 3; ++k)
+    if (j["portfolio"][k]["final_loss"].get<double>() < j["portfolio"][best]["final_loss"].get<double>()) best = k;
+  EXPECT_EQ(j["chosen_recipe"], j["portfolio"][best]["recipe"]);
+  const CliRun hard = run_cli(common + " --method hard");
+  ASSERT_EQ(hard.exit_code, 0) << hard.err;
+  EXPECT_EQ(nlohmann::json::parse(hard.out)["portfolio"].size(), 2u) << hard.out;
+}
+
 // --softening sets the convex loss's softening and the generated data's: the JSON names it,
 // and the loss at the same initial values differs between methods.
 TEST(CliLearnSceneOptions, SofteningReachesTheConvexLoss) {
