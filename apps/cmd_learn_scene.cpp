@@ -357,13 +357,12 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
   app->add_flag("--portfolio", o->portfolio,
                "train several recipes from the same initial values, the --optimizer alone, adam (--lr, --lr-decay) then "
-               "the --optimizer, and a continuation: the --optimizer on the default convex loss (convex) or on the relaxed "
-               "loss without proximal centres (relaxed), then on this one; keep the lowest training loss (JSON: "
-               "portfolio, chosen_recipe)");
+               "the --optimizer, and (convex) the --optimizer on the default convex loss then on this one; keep the "
+               "lowest training loss (JSON: portfolio, chosen_recipe)");
   app->add_option("--portfolio-adam-epochs", o->portfolio_adam_epochs, "--portfolio: epochs of its adam stage")
       ->capture_default_str();
   app->add_option("--portfolio-smooth-epochs", o->portfolio_smooth_epochs,
-                  "--portfolio, --method convex or relaxed: epochs of the continuation's first stage")
+                  "--portfolio, --method convex: epochs of the continuation's first stage, on the default convex loss")
       ->capture_default_str();
   app->add_flag("--lm-geodesic", o->lm_geodesic,
                "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");

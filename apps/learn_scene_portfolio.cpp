@@ -12,22 +12,14 @@ ScenePortfolio make_scene_portfolio(const learn::SceneDataset& data, const learn
   adam.optimizer.lm_geodesic_acceleration = false;
   p.recipes = {{o.optimizer, {{t}}}, {"adam+" + o.optimizer, {{adam}, {t}}}};
 
-  learn::SceneLossSettings first_settings = ls;
-  std::string name;
-  if (ls.method == learn::LossMethod::convex) {
-    first_settings.convex = learn::ConvexStepLossSettings{};
-    first_settings.convex.softening = ls.convex.softening;
-    name = "smooth+";
-  } else if (ls.method == learn::LossMethod::relaxed && ls.relaxed_warm_center) {
-    first_settings.relaxed_warm_center = false;
-    name = "biased+";
-  } else {
-    return p;
-  }
-  p.first_stage_objective = std::make_unique<learn::SceneObjective>(data, map, first_settings);
+  if (ls.method != learn::LossMethod::convex) return p;
+  learn::SceneLossSettings smooth_settings = ls;
+  smooth_settings.convex = learn::ConvexStepLossSettings{};
+  smooth_settings.convex.softening = ls.convex.softening;
+  p.first_stage_objective = std::make_unique<learn::SceneObjective>(data, map, smooth_settings);
   learn::TrainSettings first = t;
   first.epochs = o.smooth_epochs;
-  p.recipes.push_back({name + o.optimizer, {{first, p.first_stage_objective.get()}, {t}}});
+  p.recipes.push_back({"smooth+" + o.optimizer, {{first, p.first_stage_objective.get()}, {t}}});
   return p;
 }
 

@@ -6,16 +6,13 @@
 //   smooth+<opt>    (convex) the optimizer on the default convex loss (smoother and biased:
 //                   deviation penalty in both phases) for --portfolio-smooth-epochs, then on
 //                   the run's loss;
-//   biased+<opt>    (relaxed) the optimizer on the relaxed loss WITHOUT proximal centres
-//                   (every evaluation centred at 0: the convexity shift's bias stays, but the
-//                   loss is a function of θ alone, so a line search compares like with like)
-//                   for --portfolio-smooth-epochs, then on the run's loss (centres carried
-//                   across evaluations: unbiased at convergence).
-// Why the relaxed continuation: with carried centres the loss a trial point sees includes
-// the shift's (b/2)‖x − c‖² for the centre c of the previous evaluation, which penalises
-// every move of the solution; on the 30-body learning pile seed 3 L-BFGS stopped there with
-// "no decrease along −gradient" at μ 51% off while the loss still fell by 0.09 along
-// μ → truth (measured, bench/learn_scene_recovery.sh).
+// The relaxed and hard losses get the first two. Tried for the relaxed loss and not kept: a
+// continuation "biased+<opt>", L-BFGS on the relaxed loss without proximal centres (every
+// evaluation centred at 0, a function of θ alone) for 60 epochs, then with them. On the
+// 30-body learning pile seed 3 (25% off), where L-BFGS alone stops at loss 0.225 (μ 51% off)
+// with "no decrease along −gradient", the biased stage stopped the same way after 17 epochs and
+// the recipe ended at loss 1.56 (μ 62% off): the stall is the loss's kinks and stiffness in
+// the vertices, not the centres' state (measured 2026-11-28; docs/cli.md).
 #include <lcprelax/learn/portfolio.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
 
@@ -32,7 +29,7 @@ struct ScenePortfolioOptions {
 };
 
 /// The recipes and the objective of their continuation's first stage (kept alive beside
-/// them; null without a continuation, e.g. for the hard loss).
+/// them; null without a continuation: hard and relaxed losses).
 struct ScenePortfolio {
   std::vector<learn::TrainRecipe> recipes;
   std::unique_ptr<learn::SceneObjective> first_stage_objective;

@@ -169,27 +169,29 @@ TEST(CliLearnSceneOptions, PortfolioKeepsTheRecipeWithTheLowestLoss) {
                    "--portfolio");
 }
 
-// The relaxed loss's portfolio has the continuation biased+OPT: OPT on the relaxed loss without
-// proximal centres (every evaluation centred at 0), then on the run's loss; the hard loss has
-// no continuation. The kept recipe is the one with the lowest training loss.
-TEST(CliLearnSceneOptions, RelaxedPortfolioHasTheBiasedContinuation) {
+// The relaxed and hard losses' portfolios have two recipes, OPT and adam+OPT (no continuation);
+// the kept one has the lowest training loss. The reported final_loss is evaluated after the
+// portfolio: the hard loss's equals the kept recipe's; the relaxed loss's is one proximal step
+// further (its centres advance per evaluation; learn/portfolio.hpp), close to it.
+TEST(CliLearnSceneOptions, RelaxedAndHardPortfoliosHaveTwoRecipes) {
   const std::string common = "learn scene --bodies 8 --steps 20 --threads 2 --json --optimizer lbfgs --epochs 2 "
-                             "--portfolio --portfolio-adam-epochs 2 --portfolio-smooth-epochs 2 --learn mu,mass";
-  const CliRun relaxed = run_cli(common + " --method relaxed");
-  ASSERT_EQ(relaxed.exit_code, 0) << relaxed.err;
-  const auto j = nlohmann::json::parse(relaxed.out);
-  ASSERT_EQ(j["portfolio"].size(), 3u) << relaxed.out;
-  EXPECT_EQ(j["portfolio"][0]["recipe"], "lbfgs");
-  EXPECT_EQ(j["portfolio"][1]["recipe"], "adam+lbfgs");
-  EXPECT_EQ(j["portfolio"][2]["recipe"], "biased+lbfgs");
-  EXPECT_NE(j["portfolio"][2]["final_loss"].get<double>(), j["portfolio"][0]["final_loss"].get<double>());
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < 3; ++k)
-    if (j["portfolio"][k]["final_loss"].get<double>() < j["portfolio"][best]["final_loss"].get<double>()) best = k;
-  EXPECT_EQ(j["chosen_recipe"], j["portfolio"][best]["recipe"]);
-  const CliRun hard = run_cli(common + " --method hard");
-  ASSERT_EQ(hard.exit_code, 0) << hard.err;
-  EXPECT_EQ(nlohmann::json::parse(hard.out)["portfolio"].size(), 2u) << hard.out;
+                             "--portfolio --portfolio-adam-epochs 2 --learn mu,mass";
+  for (const char* method : {"relaxed", "hard"}) {
+    const CliRun r = run_cli(common + " --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["portfolio"].size(), 2u) << r.out;
+    EXPECT_EQ(j["portfolio"][0]["recipe"], "lbfgs");
+    EXPECT_EQ(j["portfolio"][1]["recipe"], "adam+lbfgs");
+    const std::size_t best =
+        j["portfolio"][1]["final_loss"].get<double>() < j["portfolio"][0]["final_loss"].get<double>() ? 1 : 0;
+    EXPECT_EQ(j["chosen_recipe"], j["portfolio"][best]["recipe"]) << method;
+    const double reported = j["final_loss"].get<double>(), kept = j["portfolio"][best]["final_loss"].get<double>();
+    if (std::string(method) == "hard")
+      EXPECT_EQ(reported, kept);
+    else
+      EXPECT_NEAR(reported, kept, 0.1 * kept);
+  }
 }
 
 // --softening sets the convex loss's softening and the generated data's: the JSON names it,

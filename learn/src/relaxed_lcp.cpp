@@ -88,15 +88,19 @@ SparseMatrix on_pattern(const SparseMatrix& A, F f) {
   return out;
 }
 
+}  // namespace
+
+namespace detail {
 // Where each assembled entry goes in a compressed matrix: entry k (in emission order) at
 // position (row[k], col[k]) is stored in valuePtr()[slot[k]]; first[k] marks the first
-// entry of its slot (assigned; later ones are added).
-struct EntryMap {
+// entry of its slot (assigned; later ones are added). Not in the anonymous namespace: a
+// member of RelaxedLcpSolver::Impl, which has external linkage (-Wsubobject-linkage).
+struct RelaxedLcpEntryMap {
   std::vector<Index> row, col, slot;
   std::vector<char> first;
 };
-
-}  // namespace
+}  // namespace detail
+using EntryMap = detail::RelaxedLcpEntryMap;
 
 struct RelaxedLcpSolver::Impl {
   RelaxedLcpSettings opt;
