@@ -145,7 +145,7 @@ std::string write_trajectory(const std::string& name, int bodies, int frames, bo
 // loss then on this one; the kept one has the lowest training loss, and the reported
 // final_loss is its loss. Refused with adam as the optimizer and with --log.
 TEST(CliLearnSceneOptions, PortfolioKeepsTheRecipeWithTheLowestLoss) {
-  const std::string common = "learn scene --bodies 10 --steps 30 --method convex --phase1-deviation 0 "
+  const std::string common = "learn scene --bodies 6 --steps 16 --method convex --phase1-deviation 0 "
                              "--phase1-regularization 1e-6 --threads 2 --json --optimizer lm --epochs 3";
   const CliRun plain = run_cli(common);
   const CliRun all = run_cli(common + " --portfolio --portfolio-adam-epochs 2 --portfolio-smooth-epochs 2");
@@ -174,7 +174,7 @@ TEST(CliLearnSceneOptions, PortfolioKeepsTheRecipeWithTheLowestLoss) {
 // portfolio: the hard loss's equals the kept recipe's; the relaxed loss's is one proximal step
 // further (its centres advance per evaluation; learn/portfolio.hpp), close to it.
 TEST(CliLearnSceneOptions, RelaxedAndHardPortfoliosHaveTwoRecipes) {
-  const std::string common = "learn scene --bodies 8 --steps 20 --threads 2 --json --optimizer lbfgs --epochs 2 "
+  const std::string common = "learn scene --bodies 6 --steps 12 --threads 2 --json --optimizer lbfgs --epochs 2 "
                              "--portfolio --portfolio-adam-epochs 2 --learn mu,mass";
   for (const char* method : {"relaxed", "hard"}) {
     const CliRun r = run_cli(common + " --method " + method);
