@@ -1,8 +1,7 @@
 #pragma once
 // Central differences of one SceneObjective sample against its adjoint gradient, parameter
-// by parameter, for the structured-parameter tests (learn_scene_gap_test.cpp,
-// learn_scene_velocity_residual_test.cpp). The same rule as learn_scene_gradient_test.cpp:
-// one-sided differences at h and h/2 tell a kink (forward − backward does not halve with h)
+// by parameter, for the scene gradient tests (learn_scene_gradient_test.cpp,
+// learn_scene_gap_test.cpp, learn_scene_velocity_residual_test.cpp). One-sided differences at h and h/2 tell a kink (forward − backward does not halve with h)
 // from a smooth stretch; on a kink the adjoint must equal one of the one-sided derivatives,
 // elsewhere the central difference to `tolerance` relative to the parameter's own derivative
 // (floor 1e-3 of the largest), plus the differences' own error (their change from h to h/2).
@@ -60,7 +59,7 @@ inline std::vector<Index> samples_by_gradient(SceneObjective& objective, const P
 }
 
 /// Compares ∂ℓ/∂θ_k of sample `sample` with central differences for each k in `params`
-/// (GoogleTest expectations); h = 1e-5·max(length scale, |θ_k|).
+/// (GoogleTest expectations); h = 1e-5·max(length scale, |θ_k|), 1e-5 rad for angles.
 inline FdReport compare_with_central_differences(SceneObjective& objective, const SceneParameterMap& map,
                                                  const ParameterSet& theta, Index sample,
                                                  const std::vector<Index>& params, const std::string& label,
@@ -86,7 +85,9 @@ inline FdReport compare_with_central_differences(SceneObjective& objective, cons
     return rs.loss;
   };
   for (Index k : params) {
-    const double h = 1e-5 * std::max(map.length_scale(k), std::abs(theta[k].value));
+    const double h = 1e-5 * (map.kind(k) == SceneParameterMap::Kind::angle
+                                 ? 1.0
+                                 : std::max(map.length_scale(k), std::abs(theta[k].value)));
     const double p1 = loss_at(k, h), m1 = loss_at(k, -h), p2 = loss_at(k, h / 2), m2 = loss_at(k, -h / 2);
     const double fwd1 = (p1 - r.loss) / h, bwd1 = (r.loss - m1) / h;
     const double fwd2 = (p2 - r.loss) / (h / 2), bwd2 = (r.loss - m2) / (h / 2);
@@ -102,6 +103,9 @@ inline FdReport compare_with_central_differences(SceneObjective& objective, cons
           << label << " " << theta[k].name << ": the adjoint is neither one-sided derivative";
       continue;
     }
+    EXPECT_LE(std::abs(fd - fd_h), 1e-4 * scale) << label << " " << theta[k].name << ": a kink within ±h";
+    // The differences' own error (roundoff of the solves over h, truncation), estimated by
+    // their move from h to h/2, is allowed on top of the relative tolerance.
     const double noise = 2.0 * std::abs(fd - fd_h);
     EXPECT_LE(std::abs(r.gradient(k) - fd), tolerance * scale + noise)
         << label << " " << theta[k].name << ": adjoint " << r.gradient(k) << ", central difference " << fd;
@@ -111,6 +115,41 @@ inline FdReport compare_with_central_differences(SceneObjective& objective, cons
   std::printf("%s: %d parameters compared (largest relative error %.2e), %d on kinks\n", label.c_str(), report.checked,
               report.worst, report.kinks);
   return report;
+}
+
+/// Loss settings of the gradient tests: QP tolerances 1e-12 absolute (the convex loss's
+/// 1e-14: its adjoint runs through two interior-point solves and agrees with the differences
+/// to 1.3e-5 at 1e-12, to 1.0e-6 at 1e-14), and every probe centred at 0 (a stored proximal
+/// centre would make ℓ depend on the previous probe).
+inline SceneLossSettings fd_loss_settings(LossMethod method) {
+  SceneLossSettings ls;
+  ls.method = method;
+  ls.relaxed.qp.eps_abs = 1e-12;
+  ls.relaxed.qp.eps_rel = ls.convex.qp.eps_rel = 0.0;
+  ls.convex.qp.eps_abs = 1e-14;
+  ls.relaxed_warm_center = false;
+  return ls;
+}
+
+/// Over the first five of `samples`, the first on which `params` compare with `accept`ed
+/// kinks (accept(report) true); there the other learned parameters of θ are compared too
+/// (at most one of them on a kink). Expects such a sample to exist.
+template <class Accept>
+void check_first_smooth_sample(SceneObjective& objective, const SceneParameterMap& map, const ParameterSet& theta,
+                               const std::vector<Index>& samples, const std::vector<Index>& params,
+                               const std::string& label, Accept accept) {
+  std::vector<Index> others;
+  for (Index k = 0; k < theta.size(); ++k)
+    if (theta[k].learn && std::find(params.begin(), params.end(), k) == params.end()) others.push_back(k);
+  const std::size_t tried = std::min<std::size_t>(5, samples.size());
+  for (std::size_t n = 0; n < tried; ++n) {
+    const std::string at = label + ", transition " + std::to_string(samples[n]);
+    if (!accept(compare_with_central_differences(objective, map, theta, samples[n], params, at))) continue;
+    const FdReport o = compare_with_central_differences(objective, map, theta, samples[n], others, at + ": others");
+    EXPECT_GE(o.checked, static_cast<int>(others.size()) - 1) << "at most one parameter on a kink";
+    return;
+  }
+  ADD_FAILURE() << label << ": too many kinks at each of " << tried << " steps";
 }
 
 /// Indices of θ's parameters whose name contains `part`.

@@ -3,6 +3,8 @@
 // inertia and vertices, the ground's angle and offset, the walls' end points) for the hard,
 // relaxed and convex losses against central differences of the whole pipeline (θ → world →
 // collision → islands → assembly → loss), relative error ≤ 1e-5 away from kinks.
+#include "learn_scene_fd_support.hpp"
+
 #include <lcprelax/learn/scene_objective.hpp>
 
 #include <gtest/gtest.h>
@@ -40,9 +42,8 @@ const Pile& settled_pile(ContactModel model) {
   return piles[k];
 }
 
-// tolerance: 1e-5 relative for all three. The convex loss's adjoint runs through two
-// interior-point solves and the κ coupling: at the QP tolerance 1e-12 it agrees to 1.3e-5
-// (the solves' own error), at 1e-14 to 1.0e-6, so its solves run at 1e-14.
+// tolerance: 1e-5 relative for all three (the convex loss's solves at 1e-14:
+// test::fd_loss_settings).
 void check_gradient(LossMethod method, ContactModel data_model, double tolerance = 1e-5) {
   const Pile& pile = settled_pile(data_model);
   SceneParameterSettings ps;
@@ -51,80 +52,19 @@ void check_gradient(LossMethod method, ContactModel data_model, double tolerance
   const ParameterSet truth = map.parameters(pile.data.scene.world);
   // Away from the truth (where the hard loss and its gradient vanish): 5% off.
   const ParameterSet theta = perturb_scene_parameters(truth, map, 0.05, 11);
-  SceneLossSettings ls;
-  ls.method = method;
-  ls.relaxed.qp.eps_abs = ls.convex.qp.eps_abs = 1e-12;
-  ls.relaxed.qp.eps_rel = ls.convex.qp.eps_rel = 0.0;
-  ls.convex.qp.eps_abs = 1e-14;
-  // Every probe centred at 0 (a stored centre would make ℓ depend on the previous probe);
-  // the centred shift's gradient is checked in learn_step_loss_relaxed_test.
-  ls.relaxed_warm_center = false;
-  SceneObjective objective(pile.data, map, ls);
-  auto eval = [&](const ParameterSet& at, Index sample) {
-    objective.prepare(at, 1);
-    return objective.evaluate(sample, at, 0);
-  };
-  // The transition with the most contacts.
-  Index sample = 0;
-  long most = -1;
-  for (Index i = 0; i < objective.num_samples(); ++i) {
-    objective.reset_stats();
-    eval(theta, i);
-    if (objective.stats().contacts > most) most = objective.stats().contacts, sample = i;
-  }
+  SceneObjective objective(pile.data, map, test::fd_loss_settings(method));
+  long most = 0;
+  const Index sample = test::sample_with_most_contacts(objective, theta, most);
   ASSERT_GE(most, 60) << "the pile should rest on >= 60 contacts";
-  const SampleResult r = eval(theta, sample);
-  ASSERT_TRUE(r.ok) << r.message;
-  ASSERT_EQ(r.gradient.size(), theta.size());
-  const double gmax = r.gradient.cwiseAbs().maxCoeff();
-  ASSERT_GT(gmax, 0.0);
-  // One-sided differences at h and h/2. On a smooth stretch forward − backward = O(h) and
-  // halves with h; where it does not, θ sits on a kink (a degenerate contact: λ = 0 and
-  // w = 0, or two exactly parallel faces whose incident edge flips), which settled piles
-  // have. There the adjoint must equal one of the one-sided derivatives (it is the
-  // derivative of the final active set). At most 20% of the parameters may be on kinks.
-  auto loss_at = [&](Index k, double step) {
-    Vector v = theta.values();
-    v(k) += step;
-    ParameterSet at = theta;
-    at.set_values(v);
-    const SampleResult rs = eval(at, sample);
-    EXPECT_TRUE(rs.ok) << theta[k].name << ": " << rs.message;
-    return rs.loss;
-  };
-  int checked = 0, kinks = 0;
-  double worst = 0.0;
-  for (Index k = 0; k < theta.size(); ++k) {
-    const double h = 1e-5 * (map.kind(k) == SceneParameterMap::Kind::angle ? 1.0 : std::max(map.length_scale(k), std::abs(theta[k].value)));
-    const double p1 = loss_at(k, h), m1 = loss_at(k, -h), p2 = loss_at(k, h / 2), m2 = loss_at(k, -h / 2);
-    const double fwd1 = (p1 - r.loss) / h, bwd1 = (r.loss - m1) / h, fwd2 = (p2 - r.loss) / (h / 2), bwd2 = (r.loss - m2) / (h / 2);
-    const double fd = (p2 - m2) / h, fd_h = (p1 - m1) / (2 * h);
-    // Relative to the parameter's own derivative, with a floor of 1e-3 of the largest one
-    // (a parameter that barely acts, e.g. a wall a body only grazes, is compared in
-    // absolute terms, to 1e-8 of the largest derivative).
-    const double scale = std::max(std::abs(fd), 1e-3 * gmax);
-    const double jump1 = std::abs(fwd1 - bwd1), jump2 = std::abs(fwd2 - bwd2);
-    if (jump2 > 1e-4 * scale && jump2 > 0.75 * jump1) {
-      ++kinks;
-      const double one_sided = std::min(std::abs(r.gradient(k) - fwd2), std::abs(r.gradient(k) - bwd2));
-      std::printf("kink at θ: %s %s one-sided %.9g / %.9g, adjoint %.9g\n", to_string(method), theta[k].name.c_str(),
-                  fwd2, bwd2, r.gradient(k));
-      EXPECT_LE(one_sided, 1e-3 * std::max(std::abs(fwd2), std::abs(bwd2)) + 1e-6 * gmax)
-          << to_string(method) << " " << theta[k].name << ": the adjoint is neither one-sided derivative";
-      continue;
-    }
-    EXPECT_LE(std::abs(fd - fd_h), 1e-4 * scale) << theta[k].name << ": a kink within ±h";
-    // The differences' own error (roundoff of the solves over h, truncation) is estimated by
-    // how much they move from h to h/2 and allowed on top of the 1e-5 relative tolerance.
-    const double noise = 2.0 * std::abs(fd - fd_h);
-    EXPECT_LE(std::abs(r.gradient(k) - fd), tolerance * scale + noise)
-        << to_string(method) << " " << theta[k].name << ": adjoint " << r.gradient(k) << ", central difference " << fd;
-    worst = std::max(worst, std::abs(r.gradient(k) - fd) / scale);
-    ++checked;
-  }
-  std::printf("%s: %d parameters compared (largest relative error %.2e), %d on kinks, %ld contacts\n",
-              to_string(method), checked, worst, kinks, most);
-  EXPECT_LE(kinks * 5, static_cast<int>(theta.size()));
+  // Every parameter; settled piles have kinks (a degenerate contact: λ = 0 and w = 0, or two
+  // exactly parallel faces whose incident edge flips), where the adjoint must equal one of
+  // the one-sided derivatives (learn_scene_fd_support.hpp). At most 20% of them on kinks.
+  std::vector<Index> all(static_cast<std::size_t>(theta.size()));
+  for (Index k = 0; k < theta.size(); ++k) all[static_cast<std::size_t>(k)] = k;
+  const test::FdReport report = test::compare_with_central_differences(
+      objective, map, theta, sample, all, std::string(to_string(method)) + ", " + std::to_string(most) + " contacts",
+      tolerance);
+  EXPECT_LE(report.kinks * 5, static_cast<int>(theta.size()));
 }
 
 // A settled pile without pushes sticks everywhere; from μ₀ = 10× the truth every contact

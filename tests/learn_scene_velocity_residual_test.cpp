@@ -113,34 +113,15 @@ void check_residual_gradient(LossMethod method, ContactModel data_model) {
   const ParameterSet truth = map.parameters(data.scene.world);
   EXPECT_EQ(truth.value("class1.residual20"), 0.3);
   const ParameterSet theta = perturb_scene_parameters(truth, map, 0.05, 11);
-  SceneLossSettings ls;
-  ls.method = method;
-  ls.relaxed.qp.eps_abs = 1e-12;
-  ls.relaxed.qp.eps_rel = ls.convex.qp.eps_rel = 0.0;
-  ls.convex.qp.eps_abs = 1e-14;
-  ls.relaxed_warm_center = false;  // every probe centred at 0
-  SceneObjective objective(data, map, ls);
+  SceneObjective objective(data, map, test::fd_loss_settings(method));
   // Steps where every entry of both W acts (a settled island that sticks has v⁺ independent
   // of θ), the strongest first; the first of them with at most two entries on kinks.
   const std::vector<Index> entries = parameters_named(theta, "residual");
   ASSERT_EQ(entries.size(), 24u);
   const std::vector<Index> samples = test::samples_by_gradient(objective, theta, entries, 8);
   ASSERT_FALSE(samples.empty()) << "no step with several contacts where every entry of W acts";
-  std::vector<Index> others;
-  for (Index k = 0; k < theta.size(); ++k)
-    if (theta[k].learn && map.kind(k) != SceneParameterMap::Kind::residual) others.push_back(k);
-  bool smooth = false;
-  for (std::size_t n = 0; n < std::min<std::size_t>(5, samples.size()) && !smooth; ++n) {
-    const std::string label = std::string(to_string(method)) + ", transition " + std::to_string(samples[n]);
-    const test::FdReport w = compare_with_central_differences(objective, map, theta, samples[n], entries, label + ": W");
-    if (w.kinks > 2) continue;
-    smooth = true;
-    const test::FdReport o =
-        compare_with_central_differences(objective, map, theta, samples[n], others, label + ": μ, masses");
-    EXPECT_GE(o.checked, static_cast<int>(others.size()) - 1) << "at most one parameter on a kink";
-  }
-  EXPECT_TRUE(smooth) << "more than two entries of W on kinks at each of " << std::min<std::size_t>(5, samples.size())
-                      << " steps";
+  test::check_first_smooth_sample(objective, map, theta, samples, entries, std::string(to_string(method)) + " W",
+                                  [](const test::FdReport& r) { return r.kinks <= 2; });
 }
 
 TEST(SceneVelocityResidual, HardGradientMatchesCentralDifferences) {
