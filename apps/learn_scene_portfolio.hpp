@@ -12,7 +12,7 @@
 // 30-body learning pile seed 3 (25% off), where L-BFGS alone stops at loss 0.225 (μ 51% off)
 // with "no decrease along −gradient", the biased stage stopped the same way after 17 epochs and
 // the recipe ended at loss 1.56 (μ 62% off): the stall is the loss's kinks and stiffness in
-// the vertices, not the centres' state (measured 2026-11-28; docs/cli.md).
+// the vertices, not the centres' state (measured; docs/cli.md).
 #include <lcprelax/learn/portfolio.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
 
