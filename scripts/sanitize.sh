@@ -15,8 +15,8 @@ cmake --build "$dir" -j2
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp"
-# Three numerical sweeps that take 20–28 s each under the sanitizers (measured in a CI run of
-# 2026-11-28); shorter cases of the same files run the same code (BlockRecovery's other
+# Three numerical sweeps that take 20–28 s each under the sanitizers (measured in a CI run);
+# shorter cases of the same files run the same code (BlockRecovery's other
 # cases, the other learn-block CLI runs, the plank's phase-one fallback), and the Release job
 # runs all three.
 slow='BlockRecovery\.SweepOfInitialValues|CliLearnBlockConvergence\.DefaultRelaxedRunConvergesToTheTruth'
