@@ -71,6 +71,8 @@ struct LearnSceneOptions {
   double lr = 0.02;
   double lr_decay = 0.003;
   int proximal_iterations = 1;
+  bool mass_normalized = learn::RelaxedStepLossSettings{}.normalize_by_mass;
+  double complementarity_weight = learn::RelaxedStepLossSettings{}.a2;
   double phase1_regularization = learn::ConvexStepLossSettings{}.phase1_regularization;
   double deviation = learn::ConvexStepLossSettings{}.deviation;
   bool phase1_deviation = learn::ConvexStepLossSettings{}.phase1_deviation;
@@ -159,6 +161,13 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   ls.method = learn::parse_loss_method(o.method);
   require_option(o.proximal_iterations >= 1 && o.proximal_iterations <= 1000, "--proximal-iterations", "must be in [1, 1000]");
   ls.relaxed.proximal_iterations = o.proximal_iterations;
+  require_option(!o.mass_normalized || ls.method == learn::LossMethod::relaxed, "--mass-normalized",
+                 "applies to --method relaxed only");
+  ls.relaxed.normalize_by_mass = o.mass_normalized;
+  require_option(o.complementarity_weight == LearnSceneOptions{}.complementarity_weight ||
+                     ls.method == learn::LossMethod::relaxed,
+                 "--complementarity-weight", "applies to --method relaxed only");
+  ls.relaxed.a2 = o.complementarity_weight;  // validated with the settings
   ls.convex.phase1_regularization = o.phase1_regularization;  // validated with the settings
   ls.convex.deviation = o.deviation;
   ls.convex.phase1_deviation = o.phase1_deviation;
@@ -330,6 +339,13 @@ Command add_learn_scene_command(CLI::App& learn) {
   app->add_option("--beta2", o->beta2, "adam: decay of the squared-gradient average, in [0, 1)")->capture_default_str();
   app->add_option("--proximal-iterations", o->proximal_iterations,
                   "relaxed: QP solves per evaluation, each re-centring the convexity shift at the last solution")
+      ->capture_default_str();
+  app->add_option("--complementarity-weight", o->complementarity_weight,
+                  "relaxed: weight a2 of the complementarity term z'w (1/kg with --mass-normalized)")
+      ->capture_default_str();
+  app->add_option("--mass-normalized", o->mass_normalized,
+                  "relaxed: divide the complementarity weight a2 by each island's mean body mass (the loss "
+                  "is then invariant under a common scaling of all masses)")
       ->capture_default_str();
   app->add_option("--bodies", o->bodies, "bodies of the generated learning pile")->capture_default_str();
   app->add_option("--classes", o->classes, "shape classes of the generated pile (1..4)")->capture_default_str();

@@ -213,6 +213,26 @@ TEST(CliLearnSceneOptions, SofteningReachesTheConvexLoss) {
   expect_bad_input("learn scene --scene '" + kStack + "' --method convex --softening soft --json", "--softening");
 }
 
+// --mass-normalized and --complementarity-weight reach the relaxed loss (on the box stack,
+// 1,000 kg boxes, each changes the loss at the initial parameters); both refuse other
+// methods, and a negative weight is refused naming a2.
+TEST(CliLearnSceneOptions, MassNormalizationReachesTheRelaxedLoss) {
+  const std::string common = "learn scene --scene '" + kStack + "' --steps 20 --learn mu --method relaxed --epochs 0 --json";
+  auto loss = [&](const std::string& extra) {
+    const CliRun r = run_cli(common + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out)["final_loss"].get<double>();
+  };
+  const double plain = loss(""), heavier = loss(" --complementarity-weight 0.4");
+  const double normalized = loss(" --mass-normalized true");
+  EXPECT_NE(plain, heavier);
+  EXPECT_NE(plain, normalized);
+  expect_bad_input("learn scene --scene '" + kStack + "' --method convex --mass-normalized true --json", "--mass-normalized");
+  expect_bad_input("learn scene --scene '" + kStack + "' --method hard --complementarity-weight 1 --json",
+                   "--complementarity-weight");
+  expect_bad_input("learn scene --scene '" + kStack + "' --complementarity-weight -1 --json", "a2");
+}
+
 TEST(CliLearnSceneBadInput, ExitsTwoNamingTheProblem) {
   expect_bad_input("learn scene --learn mu,friction --json", "friction");
   expect_bad_input("learn scene --method soft --json", "--method");

@@ -261,6 +261,38 @@ TEST(StepLossRelaxed, ProximalIterationsRemoveTheShiftBias) {
   EXPECT_THROW(ws2.evaluate(s, sol.v_next, kDt, &cold.v_next), InputError);  // wrong size
 }
 
+// normalize_by_mass: a2/σ with σ the island's mean mass. The gradient (with the chain
+// through σ) against central differences, and the invariance it buys: scaling every mass
+// and inertia by 3 leaves ℓ unchanged, while the plain loss grows with the masses.
+TEST(StepLossRelaxed, MassNormalizedGradientAndScaleInvariance) {
+  RelaxedStepLossSettings st = fd_settings();
+  st.normalize_by_mass = true;
+  ContactSystem box = box_stack(1, 0.5);
+  box.v_star << 0.8, -0.3, 0.4;
+  box.phi << 0.002, 0.001;
+  check_gradient(box, noisy_target(box, 1, 0.1), 41, 1, st);
+  ContactSystem two = box_stack(2, 0.3);
+  two.minv.tail(3) *= 0.4;  // unequal masses, so that σ is not the bodies' own mass
+  two.v_star << 0.2, -0.2, 0.1, 1.0, -0.4, -0.3;
+  for (Index c = 0; c < two.num_contacts(); ++c) two.phi(c) = 1e-3 * (c + 1);
+  const Vector target = noisy_target(two, 3, 0.1);
+  check_gradient(two, target, 42, 1, st);
+  ContactSystem pile = pile_island();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (Index k = 0; k < pile.v_star.size(); ++k) pile.v_star(k) += 0.2 * u(rng);
+  for (Index c = 0; c < pile.num_contacts(); ++c) pile.phi(c) = 1e-4 * (1.5 + u(rng));
+  check_gradient(pile, noisy_target(pile, 4, 0.05), 43, 3, st);
+
+  ContactSystem heavy = two;
+  heavy.minv /= 3.0;
+  RelaxedStepLossSettings plain = fd_settings();
+  const double ln = relaxed_step_loss(two, target, kDt, st).loss, lh = relaxed_step_loss(heavy, target, kDt, st).loss;
+  EXPECT_NEAR(lh, ln, 1e-7 * ln);
+  const double pn = relaxed_step_loss(two, target, kDt, plain).loss, ph = relaxed_step_loss(heavy, target, kDt, plain).loss;
+  EXPECT_GT(ph, 1.1 * pn) << "the plain loss was expected to grow with the masses";
+}
+
 TEST(StepLossRelaxed, WorkspaceUpdateMatchesFreshSetup) {
   ContactSystem s = box_stack(2, 0.3);
   const Vector target = noisy_target(s, 5, 0.1);

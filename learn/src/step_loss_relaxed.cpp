@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lcprelax::learn {
@@ -38,6 +39,29 @@ Vector contact_scales(const ContactSystem& s, const std::vector<std::vector<int>
     S(c) = 1.0 / sum;
   }
   return S;
+}
+
+// Σ_b m_b over the island's dynamic bodies (kg, the x entries of M) and their count.
+std::pair<double, int> dynamic_mass_sum(const ContactSystem& s) {
+  double sum = 0.0;
+  int n = 0;
+  for (Index k = 0; k < s.num_dofs(); k += 3)
+    if (s.minv(k) > 0.0) {
+      sum += 1.0 / s.minv(k);
+      ++n;
+    }
+  return {sum, n};
+}
+
+// The settings with a2 replaced by a2/σ when normalize_by_mass (header comment).
+RelaxedStepLossSettings effective_settings(const ContactSystem& s, const RelaxedStepLossSettings& st) {
+  RelaxedStepLossSettings e = st;
+  if (!st.normalize_by_mass) return e;
+  const auto [sum, n] = dynamic_mass_sum(s);
+  if (n == 0 || !(sum > 0.0) || !std::isfinite(sum))
+    throw InputError("relaxed step loss: normalize_by_mass: the island has no dynamic body with finite mass");
+  e.a2 = st.a2 * n / sum;
+  return e;
 }
 
 void check_center(const ContactSystem& s, const Vector& center) {
@@ -76,9 +100,10 @@ std::string RelaxedStepLossSettings::validation_error() const {
 }
 
 QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double dt,
-                          const RelaxedStepLossSettings& st, const Vector* center) {
-  if (const std::string e = st.validation_error(); !e.empty()) throw InputError("RelaxedStepLossSettings: " + e);
+                          const RelaxedStepLossSettings& given, const Vector* center) {
+  if (const std::string e = given.validation_error(); !e.empty()) throw InputError("RelaxedStepLossSettings: " + e);
   validate_step_loss_input(s, target, dt);
+  const RelaxedStepLossSettings st = effective_settings(s, given);
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
   if (center != nullptr) check_center(s, *center);
   const Index ln = nd, bp = nd + nc, bm = bp + nf, gm = bm + nf, nx = gm + nf;
@@ -187,10 +212,10 @@ int RelaxedStepLossWorkspace::updates() const { return impl_->updates; }
 StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const Vector& target, double dt,
                                                   const Vector* center, int iterations) {
   if (iterations < 0) throw InputError("relaxed step loss: proximal iterations must be >= 0 (0: the settings')");
-  const RelaxedStepLossSettings& st = impl_->settings;
+  QpProblem qp = relaxed_step_qp(s, target, dt, impl_->settings);  // validates; centre terms added below
+  const RelaxedStepLossSettings st = effective_settings(s, impl_->settings);
   Vector c_used = center != nullptr ? *center : Vector();
   bool centered = center != nullptr;
-  QpProblem qp = relaxed_step_qp(s, target, dt, st);  // validates; centre terms added below
   if (centered) check_center(s, c_used);
   const Vector q_plain = qp.q;
   const double r_plain = qp.r;
@@ -289,6 +314,18 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
   r.grad.minv = -(m.cwiseProduct(m)).cwiseProduct(a2 * dv.cwiseProduct(vp) + y.cwiseProduct(dv));
   for (Index c = 0; c < nc; ++c)
     for (int b : bodies[static_cast<std::size_t>(c)]) r.grad.minv(3 * b) -= S(c) * S(c) * dS(c);
+  if (impl_->settings.normalize_by_mass && a2 > 0.0) {  // the chain through σ (header comment)
+    double C = m.cwiseProduct(dv).dot(vp) + S.cwiseProduct(lnt).dot(s.phi.cwiseMax(0.0)) / dt;
+    for (Index f = 0; f < nf; ++f) {
+      const Index c = s.friction_rows[static_cast<std::size_t>(f)];
+      const double dl = centered ? lnt(c) - c_used(c) : lnt(c), dg = centered ? gam(f) - c_used(nc + f) : gam(f);
+      const double sq = centered && !st.centred_shift_in_gradient ? 0.0 : t * dl * dl + dg * dg / t;
+      C += s.mu(f) * Sf(f) * (gam(f) * lnt(c) + 0.5 * sq);
+    }
+    const double total = dynamic_mass_sum(s).first;
+    for (Index k = 0; k < nd; k += 3)
+      if (s.minv(k) > 0.0) r.grad.minv(k) += C * a2 * m(k) * m(k) / total;
+  }
   return r;
 }
 

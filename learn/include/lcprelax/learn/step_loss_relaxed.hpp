@@ -61,6 +61,19 @@
 //     ∂ℓ/∂minv_k = −m_k²(a2 Δv_k v⁺_k + y_k Δv_k)  [+ −S_c² ∂ℓ/∂S_c on each contact's bodies' x entry]
 //     ∂ℓ/∂S_c = a2 λ̃n_c φ⁺_c/Δt + Σ_f(c) (a2 μ_f γ_f λ̃n_c + (a2 μ_f/2)(t λ̃n_c² + γ_f²/t)
 //               − (Jt y)_f (β̃⁺ − β̃⁻)_f) − (Jn y)_c λ̃n_c.
+//
+// Mass normalization (normalize_by_mass, off by default): zᵀw is an energy (kg·m²/s²) while
+// a1's term is a squared velocity, so with a fixed a2 the loss falls when every mass falls
+// (all impulses, hence every complementarity violation, scale with a common mass factor):
+// a model mismatch (wrong vertices) is then cheapened by lowering all masses, and μ rises to
+// keep the same friction impulses. With the setting, a2 is divided by σ = the mean mass of
+// the island's dynamic bodies (kg, the x entries of M), a2_σ = a2/σ, so that both terms are
+// squared velocities and ℓ is invariant when every mass and inertia of the island is scaled
+// by a common factor (the applied pushes in v*, not the loss, then fix the mass scale).
+// Every a2 above is then a2_σ, and the mass gradient gains the chain through σ:
+//     ∂ℓ/∂minv(3b) += C a2_σ m_b² / Σ_b' m_b',   C = ∂ℓ/∂a2_σ = Σ_k m_k Δv_k(Δv_k + v*_k)
+//                     + Σ_c S_c λ̃n_c φ⁺_c/Δt + Σ_f μ_f S_f (γ_f λ̃n(f) + sq_f/2),
+// sq_f the square of ∂ℓ/∂μ_f's shift term under the same centre convention.
 // relaxed_step_qp() exposes the QP so that tests check these against QpSolver::backward.
 // status: solved / solved_inaccurate as the QP's; failed otherwise (loss NaN, gradient zero).
 #include <lcprelax/kkt/qp_problem.hpp>
@@ -81,6 +94,7 @@ struct RelaxedStepLossSettings {
   int proximal_iterations = 1;  ///< solves per evaluation, each re-centred (≥ 1; 1: one solve)
   double proximal_tolerance = 1e-9;  ///< relative move of (λ̃n, γ) that ends the iterations early
   bool centred_shift_in_gradient = false;  ///< with a centre: exact ∂ℓ_c (true) or the unshifted estimate
+  bool normalize_by_mass = false;  ///< a2 divided by the island's mean dynamic-body mass (header comment)
   QpSettings qp;                ///< interior point (automatic backend: CHOLMOD above dense_max_kkt)
   /// Empty if valid, else a message naming the first bad field.
   std::string validation_error() const;
