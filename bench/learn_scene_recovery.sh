@@ -3,6 +3,10 @@
 # parameter perturbed by 25%. Runs (RUNS, default all three):
 #   relaxed     the relaxed loss on data of the LCP model, 800 epochs of Adam (lr 0.01,
 #               decay 0.01);
+#   relaxed_mn  the same with --mass-normalized true (a2 = 0.1 divided by each island's mean
+#               mass, docs/formulations.md); relaxed_mn_a1 with a2 = 1 (1/kg); relaxed_a001
+#               without the normalization and a2 = 0.01 (the normalized weight's size on
+#               these ~10 kg bodies);
 #   relaxed_portfolio the relaxed loss with --portfolio and L-BFGS (apps/learn_scene_portfolio.hpp):
 #               L-BFGS alone and Adam (400 epochs, lr 0.01, decay 0.01) then L-BFGS, at most
 #               300 L-BFGS epochs each;
@@ -45,13 +49,16 @@ for seed in $SEEDS; do
   for run in $RUNS; do
     case $run in
       relaxed) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01" ;;
+      relaxed_mn) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --mass-normalized true" ;;
+      relaxed_mn_a1) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --mass-normalized true --complementarity-weight 1" ;;
+      relaxed_a001) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --complementarity-weight 0.01" ;;
       relaxed_portfolio) args="--method relaxed --optimizer lbfgs --epochs 300 --portfolio --portfolio-adam-epochs 400 --lr 0.01 --lr-decay 0.01" ;;
       convex) args="--method convex $LM --epochs 200" ;;
       convex_geo) args="--method convex $LM --epochs 200 --lm-geodesic" ;;
       convex_portfolio) args="--method convex $LM --epochs 200 --portfolio --portfolio-adam-epochs $ADAM_EPOCHS" ;;
       convex_map|convex_adam_lm) ;;
       convex_lcp) args="--method convex --data-model lcp $LM --epochs 200" ;;
-      *) echo "unknown run '$run' (relaxed, relaxed_portfolio, convex, convex_geo, convex_map, convex_adam_lm, convex_portfolio, convex_lcp)" >&2; exit 2 ;;
+      *) echo "unknown run '$run' (relaxed, relaxed_mn, relaxed_mn_a1, relaxed_a001, relaxed_portfolio, convex, convex_geo, convex_map, convex_adam_lm, convex_portfolio, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
     if [ "$run" = convex_map ]; then
