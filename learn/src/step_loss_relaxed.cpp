@@ -304,24 +304,20 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
   for (Index c = 0; c < nc; ++c) r.grad.phi(c) = s.phi(c) > 0.0 ? (a2 * S(c) * lnt(c) + zn(c)) / dt : 0.0;
   const Vector jny = s.Jn * y, jty = s.Jt * y;
   Vector dS = a2 * lnt.cwiseProduct(s.phi.cwiseMax(0.0)) / dt - jny.cwiseProduct(lnt);
+  // C = ∂ℓ/∂a2 (used by normalize_by_mass's chain through σ, header comment).
+  double C = m.cwiseProduct(dv).dot(vp) + S.cwiseProduct(lnt).dot(s.phi.cwiseMax(0.0)) / dt;
   for (Index f = 0; f < nf; ++f) {
     const Index c = s.friction_rows[static_cast<std::size_t>(f)];
     const double dl = centered ? lnt(c) - c_used(c) : lnt(c), dg = centered ? gam(f) - c_used(nc + f) : gam(f);
     const double sq = centered && !st.centred_shift_in_gradient ? 0.0 : t * dl * dl + dg * dg / t;
     r.grad.mu(f) = a2 * Sf(f) * gam(f) * lnt(c) + 0.5 * a2 * Sf(f) * sq + zg(f) * lnt(c);
     dS(c) += a2 * s.mu(f) * gam(f) * lnt(c) + 0.5 * a2 * s.mu(f) * sq - jty(f) * bdiff(f);
+    C += s.mu(f) * Sf(f) * (gam(f) * lnt(c) + 0.5 * sq);
   }
   r.grad.minv = -(m.cwiseProduct(m)).cwiseProduct(a2 * dv.cwiseProduct(vp) + y.cwiseProduct(dv));
   for (Index c = 0; c < nc; ++c)
     for (int b : bodies[static_cast<std::size_t>(c)]) r.grad.minv(3 * b) -= S(c) * S(c) * dS(c);
   if (impl_->settings.normalize_by_mass && a2 > 0.0) {  // the chain through σ (header comment)
-    double C = m.cwiseProduct(dv).dot(vp) + S.cwiseProduct(lnt).dot(s.phi.cwiseMax(0.0)) / dt;
-    for (Index f = 0; f < nf; ++f) {
-      const Index c = s.friction_rows[static_cast<std::size_t>(f)];
-      const double dl = centered ? lnt(c) - c_used(c) : lnt(c), dg = centered ? gam(f) - c_used(nc + f) : gam(f);
-      const double sq = centered && !st.centred_shift_in_gradient ? 0.0 : t * dl * dl + dg * dg / t;
-      C += s.mu(f) * Sf(f) * (gam(f) * lnt(c) + 0.5 * sq);
-    }
     const double total = dynamic_mass_sum(s).first;
     for (Index k = 0; k < nd; k += 3)
       if (s.minv(k) > 0.0) r.grad.minv(k) += C * a2 * m(k) * m(k) / total;

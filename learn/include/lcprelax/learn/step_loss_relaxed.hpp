@@ -65,8 +65,7 @@
 // Mass normalization (normalize_by_mass, off by default): zᵀw is an energy (kg·m²/s²) while
 // a1's term is a squared velocity, so with a fixed a2 the loss falls when every mass falls
 // (all impulses, hence every complementarity violation, scale with a common mass factor):
-// a model mismatch (wrong vertices) is then cheapened by lowering all masses, and μ rises to
-// keep the same friction impulses. With the setting, a2 is divided by σ = the mean mass of
+// a model mismatch (wrong vertices) is then cheapened by lowering all masses. With the setting, a2 is divided by σ = the mean mass of
 // the island's dynamic bodies (kg, the x entries of M), a2_σ = a2/σ, so that both terms are
 // squared velocities and ℓ is invariant when every mass and inertia of the island is scaled
 // by a common factor (the applied pushes in v*, not the loss, then fix the mass scale).
