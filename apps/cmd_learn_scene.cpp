@@ -36,6 +36,7 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/portfolio.hpp>
 #include <lcprelax/learn/prior.hpp>
+#include <lcprelax/learn/robust.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
 #include <lcprelax/mpi/mpi_session.hpp>
 #include <lcprelax/scenes/line_plot.hpp>
@@ -79,6 +80,7 @@ struct LearnSceneOptions {
   double beta2 = learn::OptimizerSettings{}.beta2;
   bool lm_geodesic = learn::OptimizerSettings{}.lm_geodesic_acceleration;
   double prior_weight = 0.0;
+  double robust_scale = 0.0;
   bool portfolio = false;
   int portfolio_adam_epochs = 300;
   int portfolio_smooth_epochs = 40;
@@ -189,6 +191,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   require_option(std::isfinite(o.lr_decay) && o.lr_decay >= 0, "--lr-decay", "must be finite and >= 0");
   require_option(!o.lm_geodesic || o.optimizer == "lm", "--lm-geodesic", "needs --optimizer lm");
   require_option(std::isfinite(o.prior_weight) && o.prior_weight >= 0, "--prior-weight", "must be finite and >= 0");
+  require_option(std::isfinite(o.robust_scale) && o.robust_scale >= 0, "--robust-scale", "must be finite and >= 0");
   require_option(!o.portfolio || o.optimizer != "adam", "--portfolio",
                  "needs an --optimizer other than adam (its second recipe is adam, then that optimizer)");
   require_option(!o.portfolio || o.epochs > 0, "--portfolio", "needs --epochs > 0");
@@ -249,8 +252,11 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   if (!o.init_from.empty()) set_initial_values_from(o.init_from, theta);
   const learn::ParameterSet initial = theta;
   learn::SceneObjective scene_objective(data, map, ls);
-  learn::PriorObjective prior(scene_objective, initial, o.prior_weight);
-  learn::Objective& objective = o.prior_weight > 0 ? static_cast<learn::Objective&>(prior) : scene_objective;
+  // Training loss: Σ ρ(ℓᵢ) (--robust-scale; ρ(ℓ) = ℓ when 0) plus the prior's term.
+  learn::RobustObjective robust(scene_objective, o.robust_scale);
+  learn::Objective& data_loss = o.robust_scale > 0 ? static_cast<learn::Objective&>(robust) : scene_objective;
+  learn::PriorObjective prior(data_loss, initial, o.prior_weight);
+  learn::Objective& objective = o.prior_weight > 0 ? static_cast<learn::Objective&>(prior) : data_loss;
   std::vector<Index> training, validation;
   learn::split_samples(objective.num_samples(), 0.2, o.seed, training, validation);
 
@@ -290,6 +296,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   j["max_relative_error"] = number_or_null(worst);
   j["final_loss"] = number_or_null(final_eval.loss);
   j["prior_weight"] = o.prior_weight;
+  j["robust_scale"] = o.robust_scale;
   add_train_outcome(j, result, o.epochs);
   if (o.portfolio) {
     Json recipes = Json::array();
@@ -384,6 +391,9 @@ Command add_learn_scene_command(CLI::App& learn) {
                "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");
   app->add_option("--prior-weight", o->prior_weight,
                   "w of a Gaussian prior w*|xi - xi0|^2 on the free parameters, centred on the initial values (0: none); biased by O(w): continue with --init-from and no prior")
+      ->capture_default_str();
+  app->add_option("--robust-scale", o->robust_scale,
+                  "c of the Cauchy robust loss c*log(1 + l/c) applied to each transition's loss l, in l's units (0: plain mean)")
       ->capture_default_str();
   app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia; lengths in units of their class radius; radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();

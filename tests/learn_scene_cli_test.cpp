@@ -233,6 +233,30 @@ TEST(CliLearnSceneOptions, MassNormalizationReachesTheRelaxedLoss) {
   expect_bad_input("learn scene --scene '" + kStack + "' --complementarity-weight -1 --json", "a2");
 }
 
+// --robust-scale trains on Σ c log(1 + ℓᵢ/c): with c far below the stack's losses (~8e-8)
+// each transition's pull is weighted by c/ℓᵢ, so two SGD epochs move the masses much less
+// than the plain mean's; final_loss stays the plain mean data loss (equal at epochs 0); the
+// scale is echoed, and a negative one is refused naming the option.
+TEST(CliLearnSceneOptions, RobustScaleReachesTheTraining) {
+  const std::string common = "learn scene --scene '" + kStack + "' --steps 20 --learn mu,mass --method relaxed --json";
+  auto run = [&](const std::string& extra) {
+    const CliRun r = run_cli(common + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  EXPECT_EQ(run(" --epochs 0")["final_loss"].get<double>(),
+            run(" --epochs 0 --robust-scale 1e-9")["final_loss"].get<double>());
+  const auto plain = run(" --epochs 2 --patience 0 --optimizer sgd");
+  const auto robust = run(" --epochs 2 --patience 0 --optimizer sgd --robust-scale 1e-9");
+  EXPECT_EQ(robust["robust_scale"].get<double>(), 1e-9);
+  auto moved = [](const nlohmann::json& j) {
+    return std::abs(j["learned"]["class0.mass"].get<double>() - j["initial"]["class0.mass"].get<double>());
+  };
+  EXPECT_GT(moved(plain), 0.0);
+  EXPECT_LT(moved(robust), 0.2 * moved(plain));
+  expect_bad_input("learn scene --scene '" + kStack + "' --robust-scale -1 --json", "--robust-scale");
+}
+
 TEST(CliLearnSceneBadInput, ExitsTwoNamingTheProblem) {
   expect_bad_input("learn scene --learn mu,friction --json", "friction");
   expect_bad_input("learn scene --method soft --json", "--method");
