@@ -5,6 +5,7 @@
 #               decay 0.01);
 #   relaxed_robust the same with each transition's loss ℓ entering as the Cauchy robust loss
 #               0.05·log(1 + ℓ/0.05) (--robust-scale 0.05, learn/robust.hpp);
+#               relaxed_robust_c001 with c = 0.01;
 #   relaxed_mn  the same with --mass-normalized true (a2 = 0.1 divided by each island's mean
 #               mass, docs/formulations.md); relaxed_mn_a1 with a2 = 1 (1/kg); relaxed_a001
 #               without the normalization and a2 = 0.01 (the normalized weight's size on
@@ -55,13 +56,14 @@ for seed in $SEEDS; do
       relaxed_mn_a1) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --mass-normalized true --complementarity-weight 1" ;;
       relaxed_a001) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --complementarity-weight 0.01" ;;
       relaxed_robust) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --robust-scale 0.05" ;;
+      relaxed_robust_c001) args="--method relaxed --epochs 800 --lr 0.01 --lr-decay 0.01 --robust-scale 0.01" ;;
       relaxed_portfolio) args="--method relaxed --optimizer lbfgs --epochs 300 --portfolio --portfolio-adam-epochs 400 --lr 0.01 --lr-decay 0.01" ;;
       convex) args="--method convex $LM --epochs 200" ;;
       convex_geo) args="--method convex $LM --epochs 200 --lm-geodesic" ;;
       convex_portfolio) args="--method convex $LM --epochs 200 --portfolio --portfolio-adam-epochs $ADAM_EPOCHS" ;;
       convex_map|convex_adam_lm) ;;
       convex_lcp) args="--method convex --data-model lcp $LM --epochs 200" ;;
-      *) echo "unknown run '$run' (relaxed, relaxed_robust, relaxed_mn, relaxed_mn_a1, relaxed_a001, relaxed_portfolio, convex, convex_geo, convex_map, convex_adam_lm, convex_portfolio, convex_lcp)" >&2; exit 2 ;;
+      *) echo "unknown run '$run' (relaxed, relaxed_robust, relaxed_robust_c001, relaxed_mn, relaxed_mn_a1, relaxed_a001, relaxed_portfolio, convex, convex_geo, convex_map, convex_adam_lm, convex_portfolio, convex_lcp)" >&2; exit 2 ;;
     esac
     f="$OUT/${run}_${BODIES}_seed${seed}.json"
     if [ "$run" = convex_map ]; then
