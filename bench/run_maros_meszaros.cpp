@@ -5,7 +5,8 @@
 //                          [--clp PATH_TO_CLP | --no-clp] [--only NAME,NAME,...] [--verbose]
 //
 // --only runs the named problems (file stems) of DIR; --verbose prints the solver's
-// per-iteration log on stderr; --no-exact-bound-steps and --no-clean-bound-multipliers
+// per-iteration log on stderr and, per problem, the roundoff floors of the dual residual and
+// of the gap (u·Σ|terms| of xᵀPx, qᵀx, bᵀy, σ(z), σ(z_bounds)) with the largest multipliers; --no-exact-bound-steps and --no-clean-bound-multipliers
 // switch off the QpSettings of those names, --no-primal-reg-drop sets
 // QpSettings::primal_reg_drop = 0 (ablation), --primal-reg-drop V sets it to V;
 // --kkt-backend NAME (automatic, cholmod, dense, mumps) sets QpSettings::kkt_backend.
@@ -170,6 +171,20 @@ void solve_lcprelax(const lcprelax::io::QpsModel& model, const Options& opt, Row
         if (p.G.rows()) mag += p.G.cwiseAbs().transpose() * r.z.cwiseAbs();
         std::fprintf(stderr, "dual residual evaluation floor: max_j sum|terms| = %.3e -> u*that = %.3e\n",
                      mag.maxCoeff(), mag.maxCoeff() * std::ldexp(1.0, -53));
+        // The gap's terms: their sizes bound its evaluation error (u·Σ|terms|).
+        const Vector px = p.P.selfadjointView<Eigen::Upper>() * r.x;
+        const double xpx = r.x.dot(px), qx = p.q.dot(r.x), by = p.A.rows() ? p.b.dot(r.y) : 0.0;
+        double sz = 0.0, szb = 0.0, ignored = 0.0;
+        for (Index i = 0; i < r.z.size(); ++i) sz += lcprelax::bench::detail::support_term(r.z[i], p.l[i], p.u[i], ignored);
+        for (Index j = 0; j < r.x.size(); ++j)
+          szb += lcprelax::bench::detail::support_term(r.z_bounds[j], p.xl[j], p.xu[j], ignored);
+        std::fprintf(stderr,
+                     "gap terms: xPx %.3e qx %.3e by %.3e sigma(z) %.3e sigma(zb) %.3e -> u*sum %.3e; "
+                     "max|y| %.2e max|z| %.2e max|zb| %.2e\n",
+                     xpx, qx, by, sz, szb,
+                     (std::abs(xpx) + std::abs(qx) + std::abs(by) + std::abs(sz) + std::abs(szb)) * std::ldexp(1.0, -53),
+                     r.y.size() ? r.y.cwiseAbs().maxCoeff() : 0.0, r.z.size() ? r.z.cwiseAbs().maxCoeff() : 0.0,
+                     r.z_bounds.cwiseAbs().maxCoeff());
       }
     }
     row.lcp_success = info.status == lcprelax::QpStatus::solved && row.lcp_primal <= opt.eps &&
