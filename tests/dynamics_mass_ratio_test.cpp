@@ -6,7 +6,12 @@
 //   < 1e-4 m (measured numbers printed). Exception, a known limitation: with the convex
 //   model at 10⁶, phase 2's interior point fails in every step ("no progress": W has
 //   eigenvalues from 1e-6 to 4 and the impulses are 10⁶ times q/W; κ loosened to 1e-2
-//   and dropping κ do not help), so "no failed island" is NOT asserted there; each failed
+//   and dropping κ do not help. Measured in the first step: the normal rows' optimal
+//   multipliers are ~6e7, since the softening's gradient ρ·Wnn·λn ≈ 25 m/s is balanced
+//   through rows whose coefficient along the plank's direction is ~1e-6; the gap stays
+//   at 24.5 J (1e-6 of its scale 2.4e7; the tolerance is an absolute 1e-8), which with
+//   those multipliers is the rows standing ~4e-7 m/s off their bound), so "no failed island" is NOT
+//   asserted there; each failed
 //   island falls back to the LCP model (Lemke; simulator.hpp), which is asserted (the
 //   failure message says "lcp model used"), and keeps the plank at rest (drift < 1e-6 m,
 //   penetration < 1e-4 m, asserted; measured 2.6e-8 m and 1.8e-8 m. The earlier fallback,
