@@ -7,7 +7,8 @@
 // Cases (the tests under tests/ assert the physics, tests/models_stiff_cases_test.cpp the
 // hardest rows; this report only measures), each with both contact models:
 //   mass ratio    a plank 1e3×, 1e6× and 1e9× heavier than the two boxes it rests on, 200
-//                 steps (drift)
+//                 steps (drift); convex also at 1e6× and 1e9× with the lifted formulation
+//                 and ρ = 1/ratio (SimulatorSettings::convex_formulation)
 //   friction      μ = 0: a box sliding 2 m/s for 500 steps (speed kept?); μ = 1000 and
 //                 μ = 1e6: a box sliding 0.4 m/s (stopped, |v| < 1e-7, for 100 steps?)
 //   time step     a resting box for 0.5 s (≤ 2,000 steps) at Δt = 1e-6 … 1e-1 (drift)
@@ -137,6 +138,22 @@ void dynamics_cases(std::vector<Row>& rows) {
       std::snprintf(detail, sizeof detail, "drift %.2g m over 200 steps", r.drift);
       rows.push_back({"mass ratio", "plank " + std::to_string(static_cast<long long>(ratio)) + "x on boxes", m,
                       outcome(r.drift < 1e-6, r), r.residual, r.seconds, detail_of(detail, r)});
+    }
+    if (model == ContactModel::convex) {
+      // The advice of SimulatorSettings::convex_formulation: lifted QPs, ρ·ratio ≤ 1.
+      for (double ratio : {1e6, 1e9}) {
+        SimulatorSettings settings;
+        settings.convex_formulation = ConvexFormulation::lifted;
+        settings.convex_rho = 1.0 / ratio;
+        Simulator sim = make_simulator(ground_scene({box(0.2, 0.2, 1.0, Vec3(-0.8, 0.1, 0.0)), box(0.2, 0.2, 1.0, Vec3(0.8, 0.1, 0.0)),
+                                    box(2.0, 0.2, ratio, Vec3(0.0, 0.3, 0.0))},
+                                   0.5, 1e-2, model),
+                                   settings);
+        const RunStats r = run(sim, 200);
+        std::snprintf(detail, sizeof detail, "lifted, rho %.0e; drift %.2g m over 200 steps", settings.convex_rho, r.drift);
+        rows.push_back({"mass ratio", "plank " + std::to_string(static_cast<long long>(ratio)) + "x on boxes (lifted, rho = 1/ratio)",
+                        m, outcome(r.drift < 1e-6, r), r.residual, r.seconds, detail_of(detail, r)});
+      }
     }
     {
       Scene s = ground_scene({box(1.0, 0.2, 1.0, Vec3(0.0, 0.1, 0.0))}, 0.0, 1e-2, model);

@@ -65,6 +65,9 @@ std::string SimulatorSettings::validation_error() const {
   if (!(penetration_slop >= 0)) return "penetration_slop: must be >= 0";
   if (!(convex_rho >= 0) || !std::isfinite(convex_rho)) return "convex_rho: must be finite and >= 0";
   if (std::string e = convex_softening.validation_error(); !e.empty()) return "convex_softening." + e;
+  if (convex_formulation != ConvexFormulation::automatic && convex_formulation != ConvexFormulation::dual &&
+      convex_formulation != ConvexFormulation::lifted)
+    return "convex_formulation: unknown formulation";
   if (std::string e = lemke.validation_error(); !e.empty()) return "lemke." + e;
   if (std::string e = qp.validation_error(); !e.empty()) return "qp." + e;
   return {};
@@ -267,7 +270,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       wk.system = assemble_contact_system(world, contacts_, islands[i], dt, applied);
       const ContactSystem& s = wk.system;
       if (lcp && redundant_island(s)) {  // see kRedundantContactsPerDof: the convex model, reported
-        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
+        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
                                          settings_.convex_softening);
         const std::string why = std::to_string(s.num_contacts()) + " contacts on " + std::to_string(s.num_dofs()) +
                                 " degrees of freedom (bodies inside each other?): too redundant for the LCP model; ";
@@ -306,15 +309,15 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
             if (it != warm_.end()) warm[nc + f] = it->second.plus ? 1 : (it->second.minus ? -1 : 0);
           }
         }
-        wk.solution = solve_convex_model_newton(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
+        wk.solution = solve_convex_model_newton(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
                                                 settings_.convex_softening, caches[i], warm);
       } else {
-        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
+        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
                                          settings_.convex_softening, caches[i]);
       }
       // A fallback's answer is used, but the island still counts as failed.
       if (!has_solution(wk.solution.status) && lcp && !redundant_island(s)) {  // fallback: the convex model
-        ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, ConvexFormulation::automatic,
+        ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
                                          settings_.convex_softening);
         fallback.message = wk.solution.message + (has_solution(fallback.status) ? "; convex model used"
                                                                                 : "; convex fallback: " + fallback.message);

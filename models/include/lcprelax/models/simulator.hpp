@@ -64,6 +64,17 @@ struct SimulatorSettings {
   /// The convex model's normal softening (normal_softening.hpp): exp_phi (the term above,
   /// default), linear_penalty (uses convex_rho too) or mujoco_impedance.
   NormalSofteningSettings convex_softening;
+  /// Convex model: how its phase QPs are posed (contact_step.hpp ConvexFormulation):
+  /// automatic (lifted from kLiftedMinContacts contacts on), dual or lifted. Islands with a
+  /// large mass ratio want lifted: W = J M⁻¹ Jᵀ then has eigenvalues spread by the ratio
+  /// while lifted keeps M diagonal, which the QP's equilibration absorbs. Measured on a plank
+  /// 10⁶× heavier than the two 1 kg boxes it rests on (tests/dynamics_mass_ratio_test.cpp,
+  /// 200 steps, convex_rho 1e-6): dual fails in 197 islands, lifted in none (drift 7e-9 m);
+  /// at 10⁵ and ρ = 1e-3 dual leaves 166 inaccurate islands, lifted none. Keep ρ·(mass
+  /// ratio) ≲ 1 there: the softening weights λn by the light body's Wnn while the load is the
+  /// heavy body's, and at ρ = 1e-3, ratio 10⁶ the (correctly solved) model lets the boxes
+  /// slip out (31.8 m in 200 steps; 9e-7 m at 10⁵).
+  ConvexFormulation convex_formulation = ConvexFormulation::automatic;
   bool post_stabilization = true;
   bool warm_start = true;
   int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
