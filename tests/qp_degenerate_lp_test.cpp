@@ -13,8 +13,11 @@
 //     in the unscaled candidate.
 // Measured on this family (FamilyTable: n = 40 and 80, U ∈ {10, 1e2, 1e3},
 // spread 0…3, seeds 1…12, 288 problems): solved 266 with both, 265 with the cleanup only,
-// 264 with the exact steps only, 263 with neither: on this family the two are worth a
-// handful of problems (5 gained by both against one, 2 lost); on the
+// 264 with the exact steps only, 263 with neither: on this family the two were worth a
+// handful of problems (5 gained by both against one, 2 lost). Since polishing shrinks the
+// multipliers of forcing rows and accepts any solved polished point (2026-11-29) the
+// family no longer separates them: both 268, cleanup only 269, exact steps only 268,
+// neither 268 (the single cases below still need them); on the
 // Maros–Meszaros set they are what moved QSCFXM1, Q25FV47, QGROW7 and LASER to solved. The
 // cases below solve with the defaults and did not solve with the named ingredient switched
 // off (statuses in each test's comment).
@@ -83,8 +86,8 @@ TEST(QpDegenerateLp, CleanBoundMultipliersSolveLargeBounds) {
 // exact steps only, solved_inaccurate with the cleanup only.
 TEST(QpDegenerateLp, BothIngredientsNeeded) { expect_solved(9, 80, 1e3, 1.0); }
 
-// The measurement quoted in the header: on the whole family the defaults solve at least 260
-// of the 288 and more than with neither ingredient.
+// The measurement quoted in the header: on the whole family the defaults solve at least 265
+// of the 288 and no fewer than with neither ingredient.
 TEST(QpDegenerateLp, FamilyTable) {
   int solved[4] = {0, 0, 0, 0}, total = 0;
   for (double big : {1e1, 1e2, 1e3})
@@ -106,8 +109,8 @@ TEST(QpDegenerateLp, FamilyTable) {
         }
   std::printf("solved of %d: none %d, exact only %d, clean only %d, both %d\n", total, solved[0], solved[1], solved[2],
               solved[3]);
-  EXPECT_GE(solved[3], 260);
-  EXPECT_GT(solved[3], solved[0]);
+  EXPECT_GE(solved[3], 265);
+  EXPECT_GE(solved[3], solved[0]);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The 33 Maros–Meszaros problems of tests/data/maros_meszaros, each solved with the default
+// The 34 Maros–Meszaros problems of tests/data/maros_meszaros, each solved with the default
 // QpSettings (eps_abs = 1e-9, eps_rel = 0). Besides the solver's own report, the test
 // recomputes the termination quantities of qp_settings.hpp from the returned QpResult:
 //   primal  = max_i dist(G_i x, [l_i, u_i]) ∨ max_j dist(x_j, [xl_j, xu_j])   (A is empty)
@@ -73,7 +73,7 @@ const std::vector<std::string>& problem_names() {
       "HS21",     "HS268",    "HS35",     "HS35MOD",  "HS51",    "HS52",    "HS53",     "HS76",
       "LISWET1",  "LOTSCHD",  "MOSARQP1", "PRIMAL1",  "PRIMALC1", "QADLITTL", "QAFIRO", "QPCBLEND",
       "QPTEST",   "QRECIPE",  "QSC205",   "QSCAGR7",  "QSHARE1B", "QSIERRA", "STCQP1",   "TAME",
-      "ZECEVIC2"};
+      "ZECEVIC2", "QBORE3D"};
   return names;
 }
 
@@ -147,7 +147,7 @@ TEST(MarosMeszarosData, ListMatchesDirectory) {
   std::vector<std::string> listed = problem_names();
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, on_disk);
-  EXPECT_EQ(listed.size(), 33u);
+  EXPECT_EQ(listed.size(), 34u);
 }
 
 // Gondzio's centrality correctors (QpSettings::centrality_correctors) are what solves

@@ -68,7 +68,7 @@ TEST(QpsReader, EveryMarosMeszarosFileParses) {
     EXPECT_GT(p.P.nonZeros(), 0) << "every Maros–Meszaros problem has a quadratic term";
     EXPECT_EQ(p.validation_error(), "");  // sizes, NaN, l ≤ u, P upper triangular
   }
-  EXPECT_EQ(files, 33);
+  EXPECT_EQ(files, 34);
 }
 
 TEST(QpsReader, KnownSizes) {

@@ -30,6 +30,13 @@
 //    multipliers of fixed and bound-active variables from stationarity componentwise,
 //    z_b,j = −(Px + q + Aᵀy + Gᵀz)_j (0 at free variables). Signs (qp_problem.hpp): z ≤ 0
 //    at an active lower side, z ≥ 0 at an active upper side.
+// 3b. Forcing rows (QpSettings::polish_forcing_rows): a second candidate of the same point
+//    in which every row whose variables all sit at an active bound (or are fixed) gets the
+//    multiplier of smallest magnitude that keeps every sign, the bound multipliers taking
+//    up the difference (kForcingRowPasses passes; Andersen & Andersen 1995's dual postsolve
+//    of forcing constraints); its bound multipliers with a wrong sign below kSignFloorUlps
+//    ulps of their stationarity row count as 0. Of the two candidates the better counts;
+//    the corrections of step 4 come from the first.
 // 4. Corrections (at most kPolishRounds reduced solves): a side whose multiplier has the
 //    wrong sign by more than 1e-2·tol_d leaves the active set, an inactive row or bound
 //    violated by more than 1e-2·tol_p enters it at the violated side, and the system is
@@ -48,6 +55,12 @@ constexpr double kPolishDelta = 1e-7;      ///< regularization δ of K_δ (scale
 constexpr int kPolishRounds = 4;           ///< reduced solves (guess + corrections)
 constexpr int kPolishRefinement = 25;      ///< refinement steps per reduced solve
 constexpr double kPolishSignFraction = 1e-2;  ///< wrong-sign / violation threshold (× tolerance)
+/// Bound multipliers whose wrong sign is below this many ulps of their stationarity row's
+/// Σ|terms| count as 0, not as wrong (qp_polish.cpp, after the forcing-row step).
+constexpr double kSignFloorUlps = 16.0;
+/// Passes of the forcing-row step over all rows (rows share variables: a later row's shift
+/// can free an earlier one's); stops early when a pass shifts nothing.
+constexpr int kForcingRowPasses = 10;
 /// Complementarity s·z of the iterate that replaces the interior one after an accepted
 /// polish (scaled problem): active sides get s = μ/z with z = max(|ζ|, √μ), inactive ones
 /// z = μ/s with s = max(slack, √μ); the KKT matrix is factorized there once, so that

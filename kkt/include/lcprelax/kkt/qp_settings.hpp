@@ -132,14 +132,19 @@ struct QpSettings {
   /// solved_inaccurate, numerical_error or max_iterations, guess the active set from the
   /// final iterate (slack < multiplier), solve the equality-constrained KKT system on it
   /// (sparse LDLᵀ, refined), correct the guess a few times by multiplier signs and
-  /// violated constraints (kkt/src/qp_polish.hpp), and keep the polished point only if its
-  /// recomputed residuals are all no worse (within 1e-2 of their tolerances), their worst
-  /// ratio to the tolerance is smaller, all multipliers have their sign, and it is solved
-  /// (or the interior point was already solved_inaccurate). An accepted point replaces the
+  /// violated constraints (kkt/src/qp_polish.hpp), and keep the polished point only if all
+  /// multipliers have their sign, the worst ratio of its recomputed residuals to their
+  /// tolerances is smaller, and it is solved — or, when the interior point was already
+  /// solved_inaccurate, every residual is no worse (within 1e-2 of its tolerance). An
+  /// accepted point replaces the
   /// interior iterate and the KKT matrix is factorized there once more, so that backward()
   /// differentiates the polished point's active set. Not run after a solved interior point
   /// (solves stay allocation-free) or past time_limit; QpInfo::polish_* report it.
   bool polish = true;
+  /// Polishing: give forcing rows (rows all of whose variables sit at an active bound) the
+  /// multiplier of smallest magnitude that keeps every sign (their multiplier is not unique
+  /// and the interior point's grows along the central path; kkt/src/qp_polish.cpp).
+  bool polish_forcing_rows = true;
   /// Gondzio's multiple centrality correctors per iteration (at most; 0 = none) of the
   /// conservative second run, the one that follows a stalled first run (qp_solver.hpp).
   /// Each costs one more solve with the iteration's factor and is kept only if it
