@@ -16,3 +16,5 @@ $SUDO apt-get install -y --no-install-recommends libpetsc-real3.18-dev openmpi-b
 # clang with its sanitizer and libFuzzer runtimes: the fuzz targets' compiler
 # (scripts/fuzz.sh; the sanitizer job of scripts/sanitize.sh uses GCC).
 $SUDO apt-get install -y --no-install-recommends clang libclang-rt-14-dev
+# Python bindings (LCPRELAX_WITH_PYTHON: python/, docs/python.md) and their pytest suite.
+$SUDO apt-get install -y --no-install-recommends pybind11-dev python3-numpy python3-scipy python3-pytest python3-dev

@@ -1,0 +1,171 @@
+// Binds lcprelax::LemkeSolver (lcp/lemke.hpp) as lcprelax.LemkeSolver, with LcpResult and
+// LcpGradient as read-only result objects holding copies.
+//
+// Conventions (lcp/lcp_types.hpp, docs/conventions.md): find z, w with w = Mz + q,
+// 0 ≤ z ⊥ w ≥ 0 (M n×n scipy.sparse, any format; q a 1-D float array); the reported
+// residual `complementarity` is max_i |min(z_i, w_i)| with w recomputed from z. Settings are
+// keyword arguments named as the LemkeSettings fields (method as 'automatic', 'dense' or
+// 'sparse'; covering as a 1-D array). solve() and backward() release the GIL; one solver
+// must not be used from two threads at once (UsageError).
+#include "bindings.hpp"
+
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+namespace lcprelax::python {
+namespace {
+
+const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
+  using S = LemkeSettings;
+  static const std::vector<SettingField<S>> fields = {
+      enum_field("method", &S::method, {LemkeMethod::automatic, LemkeMethod::dense, LemkeMethod::sparse}),
+      int_field("dense_max_n", &S::dense_max_n),
+      int_field("max_pivots", &S::max_pivots),
+      double_field("pivot_tolerance", &S::pivot_tolerance),
+      double_field("residual_tolerance", &S::residual_tolerance),
+      int_field("refactor_interval", &S::refactor_interval),
+      bool_field("sparse_tie_rows", &S::sparse_tie_rows),
+      int_field("covering_retries", &S::covering_retries),
+      int_field("regularization_retries", &S::regularization_retries),
+      double_field("regularization", &S::regularization),
+      SettingField<S>{"covering", [](S& s, py::handle v) { s.covering = to_vector(v, "covering"); },
+                      [](const S& s) { return py::object(to_numpy(s.covering)); }},
+      bool_field("crash_start", &S::crash_start),
+      bool_field("crash_cold_fallback", &S::crash_cold_fallback),
+      int_field("crash_flip_rounds", &S::crash_flip_rounds)};
+  return fields;
+}
+
+struct PyLcpResult {
+  std::string status, message, method;
+  py::array_t<double> z, w;
+  py::array_t<bool> z_basic;
+  long pivots;
+  double complementarity, seconds;
+  bool has_solution, warm_started;
+};
+
+struct PyLcpGradient {
+  py::object dM;
+  py::array_t<double> dq;
+};
+
+struct Busy {
+  std::unique_lock<std::mutex> lock;
+  explicit Busy(std::mutex& m) : lock(m, std::try_to_lock) {
+    if (!lock.owns_lock()) throw std::logic_error("LemkeSolver is in use by another thread");
+  }
+};
+
+class PyLemkeSolver {
+ public:
+  explicit PyLemkeSolver(const LemkeSettings& s) : settings_(s), solver_(s) {}
+
+  void setup(const py::object& M, const py::object& q) {
+    const SparseMatrix Ms = to_sparse(M, "M");
+    if (Ms.rows() != Ms.cols())
+      throw InputError("M is " + std::to_string(Ms.rows()) + "x" + std::to_string(Ms.cols()) + ", must be square");
+    const Vector qv = to_vector(q, "q", static_cast<Index>(Ms.rows()), "rows of M");
+    Busy busy(mutex_);
+    py::gil_scoped_release nogil;
+    solver_.setup(Ms, qv);
+    n_ = static_cast<Index>(qv.size());
+  }
+
+  void update_q(const py::object& q) {
+    if (n_ < 0) throw std::logic_error("LemkeSolver.update_q() before setup()");
+    const Vector qv = to_vector(q, "q", n_, "rows of M");
+    Busy busy(mutex_);
+    solver_.update_q(qv);
+  }
+
+  void warm_start(const py::object& z_basic) {
+    if (n_ < 0) throw std::logic_error("LemkeSolver.warm_start() before setup()");
+    const std::vector<bool> basis = to_bool_vector(z_basic, "z_basic");
+    if (static_cast<Index>(basis.size()) != n_)
+      throw InputError("z_basic has length " + std::to_string(basis.size()) + ", expected " + std::to_string(n_));
+    Busy busy(mutex_);
+    solver_.warm_start(basis);
+  }
+
+  PyLcpResult solve() {
+    Busy busy(mutex_);
+    const LcpResult* r = nullptr;
+    {
+      py::gil_scoped_release nogil;
+      r = &solver_.solve();
+    }
+    const LcpInfo& i = r->info;
+    py::array_t<bool> basic(static_cast<py::ssize_t>(r->z_basic.size()));
+    for (std::size_t k = 0; k < r->z_basic.size(); ++k) basic.mutable_data()[k] = r->z_basic[k];
+    return {to_string(i.status), i.message, to_string(i.method), to_numpy(r->z), to_numpy(r->w), basic, i.pivots,
+            i.complementarity, i.seconds, has_solution(i.status), i.warm_started};
+  }
+
+  PyLcpGradient backward(const py::object& dl_dz) {
+    if (n_ < 0) throw std::logic_error("LemkeSolver.backward() before setup() and solve()");
+    const Vector g = to_vector(dl_dz, "dl_dz", n_, "rows of M");
+    Busy busy(mutex_);
+    LcpGradient grad;
+    {
+      py::gil_scoped_release nogil;
+      grad = solver_.backward(g);
+    }
+    return {to_scipy(grad.dM), to_numpy(grad.dq)};
+  }
+
+  py::dict settings() const { return settings_dict(settings_, lemke_fields()); }
+
+ private:
+  LemkeSettings settings_;
+  LemkeSolver solver_;
+  Index n_ = -1;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+void bind_lcp(py::module_& m) {
+  py::class_<PyLcpResult>(m, "LcpResult", "Result of LemkeSolver.solve() (copies; see lcp/lcp_types.hpp)")
+      .def_readonly("status", &PyLcpResult::status, "'solved', 'ray_termination', 'pivot_limit', ...")
+      .def_readonly("message", &PyLcpResult::message)
+      .def_readonly("z", &PyLcpResult::z)
+      .def_readonly("w", &PyLcpResult::w, "Mz + q")
+      .def_readonly("z_basic", &PyLcpResult::z_basic, "final basis (True: z_i basic), usable as a warm start")
+      .def_readonly("pivots", &PyLcpResult::pivots)
+      .def_readonly("complementarity", &PyLcpResult::complementarity, "max_i |min(z_i, w_i)|")
+      .def_readonly("seconds", &PyLcpResult::seconds)
+      .def_readonly("method", &PyLcpResult::method, "'dense' or 'sparse': the basis factorization used")
+      .def_readonly("has_solution", &PyLcpResult::has_solution)
+      .def_readonly("warm_started", &PyLcpResult::warm_started)
+      .def("__repr__", [](const PyLcpResult& r) {
+        return "LcpResult(status='" + r.status + "', pivots=" + std::to_string(r.pivots) +
+               ", complementarity=" + std::string(py::repr(py::float_(r.complementarity))) + ")";
+      });
+
+  py::class_<PyLcpGradient>(m, "LcpGradient", "Gradients of LemkeSolver.backward()")
+      .def_readonly("dM", &PyLcpGradient::dM, "scipy CSC on M's pattern")
+      .def_readonly("dq", &PyLcpGradient::dq);
+
+  py::class_<PyLemkeSolver>(m, "LemkeSolver", "Lexicographic Lemke LCP solver (lcp/lemke.hpp, docs/python.md)")
+      .def(py::init([](const py::kwargs& kw) {
+             LemkeSettings s;
+             apply_settings(s, lemke_fields(), kw, "LemkeSolver()");
+             return std::make_unique<PyLemkeSolver>(s);
+           }),
+           "LemkeSolver(**settings): keyword arguments named as the LemkeSettings fields")
+      .def("setup", &PyLemkeSolver::setup, py::arg("M"), py::arg("q"),
+           "Validates the LCP w = Mz + q, 0 <= z _|_ w >= 0 (M: n x n scipy.sparse; q: 1-D float array)")
+      .def("update_q", &PyLemkeSolver::update_q, py::arg("q"), "new q of the same size, M kept")
+      .def("warm_start", &PyLemkeSolver::warm_start, py::arg("z_basic"), "basis to try first (bool array, n)")
+      .def("solve", &PyLemkeSolver::solve, "Runs Lemke's method; returns an LcpResult (copies)")
+      .def("backward", &PyLemkeSolver::backward, py::arg("dl_dz"),
+           "Given dl/dz returns an LcpGradient (dl/dM, dl/dq); needs status solved (else UsageError)")
+      .def_property_readonly("settings", &PyLemkeSolver::settings, "the settings as a dict");
+}
+
+}  // namespace lcprelax::python

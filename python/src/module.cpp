@@ -1,0 +1,16 @@
+// Entry point of the compiled module lcprelax._lcprelax (imported by lcprelax/__init__.py).
+// Each concept is bound in its own file: errors.cpp (exception mapping), qp.cpp (QpSolver),
+// lcp.cpp (LemkeSolver), io.cpp (QPS and Siconos readers); convert.cpp holds the
+// NumPy / scipy.sparse conversions they share. Conventions: docs/python.md.
+#include "bindings.hpp"
+
+PYBIND11_MODULE(_lcprelax, m) {
+  m.doc() = "lcprelax: sparse interior-point QP with adjoint backward pass, Lemke LCP, readers";
+  // NumPy and scipy.sparse are needed by every conversion: fail at import, not at first use.
+  pybind11::module_::import("numpy");
+  pybind11::module_::import("scipy.sparse");
+  lcprelax::python::bind_errors(m);
+  lcprelax::python::bind_qp(m);
+  lcprelax::python::bind_lcp(m);
+  lcprelax::python::bind_io(m);
+}

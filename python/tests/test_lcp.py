@@ -1,0 +1,92 @@
+"""LemkeSolver: a 3x3 positive definite LCP solved to complementarity 1e-10 (checked in
+NumPy), its backward pass against finite differences, warm start and settings, and the
+Siconos LCP reader feeding the solver."""
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import lcprelax
+
+M = np.array([[4.0, 1.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 2.0]])
+Q = np.array([-1.0, 2.0, -3.0])
+
+
+def check_complementary(M, q, r, tol=1e-10):
+    z = r.z
+    w = M @ z + q
+    assert np.min(z) >= -tol
+    assert np.min(w) >= -tol
+    assert np.max(np.abs(np.minimum(z, w))) <= tol
+    assert np.max(np.abs(z * w)) <= tol
+    assert np.allclose(r.w, w, atol=1e-12)
+
+
+def test_small_lcp_solved():
+    solver = lcprelax.LemkeSolver()
+    solver.setup(sp.csr_matrix(M), Q)
+    r = solver.solve()
+    assert r.status == "solved", r.message
+    assert r.has_solution and r.pivots > 0
+    check_complementary(M, Q, r)
+    assert r.complementarity <= 1e-10
+    # Known active set: z1 = 0 (w1 > 0), z0 and z2 positive.
+    assert r.z[0] > 0.1 and r.z[2] > 0.1 and r.z[1] == 0.0
+    assert r.z_basic.dtype == np.bool_ and list(r.z_basic) == [True, False, True]
+
+
+def test_lcp_backward_matches_finite_differences():
+    g_z = np.array([1.0, -0.5, 2.0])
+    solver = lcprelax.LemkeSolver()
+    solver.setup(sp.csc_matrix(M), Q)
+    assert solver.solve().status == "solved"
+    grad = solver.backward(g_z)
+    h = 1e-6
+    fd = np.zeros(3)
+    for i in range(3):
+        values = []
+        for sign in (1.0, -1.0):
+            q = Q.copy()
+            q[i] += sign * h
+            s = lcprelax.LemkeSolver()
+            s.setup(sp.csc_matrix(M), q)
+            values.append(g_z @ s.solve().z)
+        fd[i] = (values[0] - values[1]) / (2 * h)
+    assert np.max(np.abs(fd)) > 0.1
+    assert np.max(np.abs(grad.dq - fd)) / np.max(np.abs(fd)) <= 1e-6
+    assert sp.issparse(grad.dM) and grad.dM.shape == (3, 3)
+
+
+def test_warm_start_and_update_q():
+    solver = lcprelax.LemkeSolver(method="dense")
+    solver.setup(sp.csc_matrix(M), Q)
+    first = solver.solve()
+    solver.update_q(Q * 2.0)
+    solver.warm_start(first.z_basic)
+    second = solver.solve()
+    assert second.status == "solved" and second.warm_started and second.pivots == 0
+    assert np.allclose(second.z, 2.0 * first.z, atol=1e-12)
+
+
+def test_lemke_settings():
+    solver = lcprelax.LemkeSolver(method="sparse", max_pivots=100, covering=np.ones(3))
+    assert solver.settings["method"] == "sparse" and solver.settings["max_pivots"] == 100
+    solver.setup(sp.csc_matrix(M), Q)
+    r = solver.solve()
+    assert r.method == "sparse"
+    check_complementary(M, Q, r)
+    with pytest.raises(TypeError, match="pivots"):
+        lcprelax.LemkeSolver(pivots=3)
+    with pytest.raises(lcprelax.InputError, match="method"):
+        lcprelax.LemkeSolver(method="fast")
+
+
+def test_siconos_lcp_file_solved(data_dir):
+    data = lcprelax.read_siconos_lcp(data_dir / "siconos" / "handmade" / "lcp_dense.dat")
+    assert sp.issparse(data["M"]) and data["M"].shape == (4, 4)
+    # Dense storage is column-major: the printed line "4 -1 0 0" is the first column.
+    assert data["M"][1, 0] == -1.0 and data["M"][0, 1] == 1.0
+    solver = lcprelax.LemkeSolver()
+    solver.setup(data["M"], data["q"])
+    r = solver.solve()
+    assert r.status == "solved"
+    check_complementary(data["M"].toarray(), data["q"], r)
