@@ -180,73 +180,6 @@ bool solve_reduced(const StandardForm& f, const Iterate& it, const Vector& zg_it
   return true;
 }
 
-// Step 3b of qp_polish.hpp: smallest multipliers of forcing rows. A row (of A, an equality
-// row of G, or an active side of G) all of whose variables sit at an active bound (or are
-// fixed) is a forcing constraint: shifting its multiplier ω by Δ moves only the bound
-// multipliers of those variables, z_b,j = t_j − a_j·Δ with t_j = −(Px + q + Aᵀy + Gᵀz)_j, so
-// stationarity holds for every Δ. ω is set to the value of smallest |ω| that keeps ω's sign
-// (active side) and every z_b,j's sign (≤ 0 at a lower bound, ≥ 0 at an upper one; free at a
-// fixed variable) no worse than at Δ = 0. The interior point's multiplier of such a row is
-// not unique and grows along the central path (the analytic centre of an unbounded set),
-// and its σ term ω·bound then dominates the gap (QBORE3D: rows l = u = −1.78e-15, ω ~ 1e6).
-// The dual postsolve of forcing constraints in presolve: Andersen & Andersen, "Presolving
-// in linear programming", Math. Prog. 71, 1995, §3; Gondzio, INFORMS J. Comput. 9, 1997.
-// `target` holds t on entry and the shifted t on return. Returns the rows shifted.
-int shrink_forcing_row_multipliers(const StandardForm& f, const QpProblem& p, const ActiveSet& a, QpResult& cand,
-                                   Vector& target) {
-  int shifted = 0;
-  const Index n = f.n;
-  // Per variable: +1 / −1 at an active upper / lower bound, 2 fixed (free sign), 0 free.
-  std::vector<signed char> state(static_cast<size_t>(n), 0);
-  for (Index j = 0; j < n; ++j) state[j] = f.fixed_eq_row[j] >= 0 ? 2 : a.bounds[j];
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> Ar = p.A, Gr = p.G;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  // sign: +1 ω ≥ 0, −1 ω ≤ 0, 0 free.
-  auto shrink = [&](const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, Index row, double& omega, int sign) {
-    double lo = -inf, hi = inf;
-    bool any = false;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(M, row); e; ++e) {
-      const Index j = e.col();
-      const double g = e.value();
-      if (g == 0.0) continue;
-      if (state[j] == 0) return;  // a free variable: not a forcing row
-      any = true;
-      if (state[j] == 2) continue;
-      // Keep s_j·(t_j − gΔ) ≤ max(s_j·t_j, 0), s_j = −1 at a lower bound (z_b ≤ 0), +1 upper...
-      // written as a bound on gΔ: lower: t_j − gΔ ≤ c, c = max(t_j, 0); upper: t_j − gΔ ≥ c, c = min(t_j, 0).
-      const double t = target(j);
-      const double c = state[j] < 0 ? std::max(t, 0.0) : std::min(t, 0.0);
-      // lower: gΔ ≥ t − c; upper: gΔ ≤ t − c.
-      const double bound = (t - c) / g;
-      const bool at_least = (state[j] < 0) == (g > 0);
-      if (at_least) lo = std::max(lo, bound);
-      else hi = std::min(hi, bound);
-    }
-    if (!any) return;
-    if (sign > 0) lo = std::max(lo, -omega);  // ω + Δ ≥ 0
-    if (sign < 0) hi = std::min(hi, -omega);  // ω + Δ ≤ 0
-    if (!(lo <= 0.0 && 0.0 <= hi)) return;    // roundoff: leave the row as it is
-    const double delta = std::clamp(-omega, lo, hi);
-    if (delta == 0.0) return;
-    omega += delta;
-    ++shifted;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator e(M, row); e; ++e) target(e.col()) -= e.value() * delta;
-  };
-  int total = 0;
-  for (int pass = 0; pass < kForcingRowPasses; ++pass) {
-    shifted = 0;
-    for (Index k = 0; k < f.me; ++k) {
-      if (f.eq_source[k] == EqSource::a_row) shrink(Ar, f.eq_index[k], cand.y(f.eq_index[k]), 0);
-      if (f.eq_source[k] == EqSource::g_row) shrink(Gr, f.eq_index[k], cand.z(f.eq_index[k]), 0);
-    }
-    for (Index k = 0; k < f.mg; ++k)
-      if (a.rows[k] != 0) shrink(Gr, f.g_index[k], cand.z(f.g_index[k]), a.rows[k] < 0 ? -1 : 1);
-    total += shifted;
-    if (shifted == 0) break;
-  }
-  return total;
-}
-
 // Step 3 and 4 of qp_polish.hpp: the unscaled candidate of `sp`, with wrong signs up to
 // thr_d set to 0; `next` receives the corrected active set. Returns the largest wrong-sign
 // magnitude of a multiplier.
@@ -301,7 +234,7 @@ double build_candidate(const StandardForm& f, const QpProblem& p, const ActiveSe
     if (p.G.rows()) floor_d.noalias() += p.G.cwiseAbs().transpose() * cand.z.cwiseAbs();
     floor_d *= kSignFloorUlps * std::numeric_limits<double>::epsilon();
   }
-  if (shrink_forcing_rows && shrink_forcing_row_multipliers(f, p, a, cand, targets) > 0) {
+  if (shrink_forcing_rows && shrink_forcing_row_multipliers(f, p, a.rows, a.bounds, cand, targets) > 0) {
     // Recomputed from the shifted multipliers: t − a·Δ carries the roundoff of the large ω.
     w.Aty.noalias() = p.A.transpose() * cand.y;
     w.Gtz.noalias() = p.G.transpose() * cand.z;

@@ -49,6 +49,8 @@
 // factorizes the KKT matrix there for backward().
 #include "qp_solver_impl.hpp"
 
+#include <vector>
+
 namespace lcprelax::detail {
 
 constexpr double kPolishDelta = 1e-7;      ///< regularization δ of K_δ (scaled problem)
@@ -79,6 +81,22 @@ struct PolishOutcome {
 /// `before` are the residuals of the unpolished result (they set tol_p and tol_d). On
 /// found, `candidate` holds the best polished point (x, y, z, z_bounds; info untouched).
 /// Allocates (a new reduced pattern per round); uses w's unscaled products as scratch.
+/// Step 3b: a row (of A, an equality row of G, or an active side of G, `rows`: 0 inactive,
+/// ±1 active side) all of whose variables sit at an active bound (`bounds`: ±1) or are fixed is
+/// a forcing constraint: shifting its multiplier ω by Δ moves only the bound multipliers of
+/// those variables, z_b,j = t_j − a_j·Δ with t_j = −(Px + q + Aᵀy + Gᵀz)_j, so stationarity
+/// holds for every Δ. ω is set to its value of smallest |ω| that keeps ω's sign (active side)
+/// and every z_b,j's sign (≤ 0 at a lower bound, ≥ 0 at an upper one; free at a fixed
+/// variable) no worse than at Δ = 0, in up to kForcingRowPasses passes over the rows. The
+/// interior point's multiplier of such a row is not unique and grows along the central path
+/// (the analytic centre of an unbounded set), and its term ω·bound then dominates the gap
+/// (QBORE3D: rows l = u = −1.78e-15, ω ~ 1e6). The dual postsolve of forcing constraints:
+/// Andersen & Andersen, "Presolving in linear programming", Math. Prog. 71, 1995, §3;
+/// Gondzio, INFORMS J. Comput. 9, 1997. `target` holds t on entry and the shifted t on
+/// return; cand.y, cand.z are updated. Returns the number of shifts. Allocates.
+int shrink_forcing_row_multipliers(const StandardForm& f, const QpProblem& p, const std::vector<signed char>& rows,
+                                   const std::vector<signed char>& bounds, QpResult& cand, Vector& target);
+
 PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, const QpSettings& s,
                               const Residuals& before, QpResult& candidate, Workspace& w);
 
