@@ -20,6 +20,8 @@
 
 #include <functional>
 #include <limits>
+#include <mutex>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +34,15 @@ void bind_errors(py::module_& m);
 void bind_qp(py::module_& m);
 void bind_lcp(py::module_& m);
 void bind_io(py::module_& m);
+
+/// Takes a solver for one call or fails: a solver busy in another thread is a UsageError
+/// (std::logic_error "<solver> is in use by another thread").
+struct Busy {
+  std::unique_lock<std::mutex> lock;
+  Busy(std::mutex& m, const char* solver) : lock(m, std::try_to_lock) {
+    if (!lock.owns_lock()) throw std::logic_error(std::string(solver) + " is in use by another thread");
+  }
+};
 
 /// scipy.sparse (any format) → CSC SparseMatrix; `name` is used in error messages.
 SparseMatrix to_sparse(py::handle obj, const std::string& name);

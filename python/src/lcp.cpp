@@ -54,13 +54,6 @@ struct PyLcpGradient {
   py::array_t<double> dq;
 };
 
-struct Busy {
-  std::unique_lock<std::mutex> lock;
-  explicit Busy(std::mutex& m) : lock(m, std::try_to_lock) {
-    if (!lock.owns_lock()) throw std::logic_error("LemkeSolver is in use by another thread");
-  }
-};
-
 class PyLemkeSolver {
  public:
   explicit PyLemkeSolver(const LemkeSettings& s) : settings_(s), solver_(s) {}
@@ -70,7 +63,7 @@ class PyLemkeSolver {
     if (Ms.rows() != Ms.cols())
       throw InputError("M is " + std::to_string(Ms.rows()) + "x" + std::to_string(Ms.cols()) + ", must be square");
     const Vector qv = to_vector(q, "q", static_cast<Index>(Ms.rows()), "rows of M");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "LemkeSolver");
     py::gil_scoped_release nogil;
     solver_.setup(Ms, qv);
     n_ = static_cast<Index>(qv.size());
@@ -79,7 +72,7 @@ class PyLemkeSolver {
   void update_q(const py::object& q) {
     if (n_ < 0) throw std::logic_error("LemkeSolver.update_q() before setup()");
     const Vector qv = to_vector(q, "q", n_, "rows of M");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "LemkeSolver");
     solver_.update_q(qv);
   }
 
@@ -88,12 +81,12 @@ class PyLemkeSolver {
     const std::vector<bool> basis = to_bool_vector(z_basic, "z_basic");
     if (static_cast<Index>(basis.size()) != n_)
       throw InputError("z_basic has length " + std::to_string(basis.size()) + ", expected " + std::to_string(n_));
-    Busy busy(mutex_);
+    Busy busy(mutex_, "LemkeSolver");
     solver_.warm_start(basis);
   }
 
   PyLcpResult solve() {
-    Busy busy(mutex_);
+    Busy busy(mutex_, "LemkeSolver");
     const LcpResult* r = nullptr;
     {
       py::gil_scoped_release nogil;
@@ -109,7 +102,7 @@ class PyLemkeSolver {
   PyLcpGradient backward(const py::object& dl_dz) {
     if (n_ < 0) throw std::logic_error("LemkeSolver.backward() before setup() and solve()");
     const Vector g = to_vector(dl_dz, "dl_dz", n_, "rows of M");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "LemkeSolver");
     LcpGradient grad;
     {
       py::gil_scoped_release nogil;

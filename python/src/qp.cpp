@@ -66,14 +66,6 @@ struct PyQpGradient {
   double adjoint_residual;
 };
 
-/// Takes a solver for one call or fails: a solver busy in another thread is a UsageError.
-struct Busy {
-  std::unique_lock<std::mutex> lock;
-  explicit Busy(std::mutex& m) : lock(m, std::try_to_lock) {
-    if (!lock.owns_lock()) throw std::logic_error("QpSolver is in use by another thread");
-  }
-};
-
 class PyQpSolver {
  public:
   explicit PyQpSolver(const QpSettings& s) : solver_(s) {}
@@ -96,7 +88,7 @@ class PyQpSolver {
     p.u = u.is_none() ? Vector::Constant(mi, kInf) : to_vector(u, "u", mi, "rows of G");
     p.xl = xl.is_none() ? Vector::Constant(n, -kInf) : to_vector(xl, "xl", n, "length of q");
     p.xu = xu.is_none() ? Vector::Constant(n, kInf) : to_vector(xu, "xu", n, "length of q");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "QpSolver");
     ready_ = false;
     {
       py::gil_scoped_release nogil;
@@ -122,7 +114,7 @@ class PyQpSolver {
     if (!xl.is_none()) p.xl = to_vector(xl, "xl", n, "number of variables");
     if (!xu.is_none()) p.xu = to_vector(xu, "xu", n, "number of variables");
     if (!r.is_none()) p.r = setting_double(r, "r");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "QpSolver");
     {
       py::gil_scoped_release nogil;
       solver_.update(p);
@@ -137,12 +129,12 @@ class PyQpSolver {
     const Vector yv = to_vector(y, "y", problem_.num_equalities(), "rows of A");
     const Vector zv = to_vector(z, "z", problem_.num_inequalities(), "rows of G");
     const Vector bv = to_vector(zb, "z_bounds", n, "number of variables");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "QpSolver");
     solver_.warm_start(xv, yv, zv, bv);
   }
 
   PyQpResult solve() {
-    Busy busy(mutex_);
+    Busy busy(mutex_, "QpSolver");
     const QpResult* r = nullptr;
     {
       py::gil_scoped_release nogil;
@@ -159,7 +151,7 @@ class PyQpSolver {
     const Vector dx = to_vector(dl_dx, "dl_dx", problem_.num_variables(), "number of variables");
     const Vector dy = dl_dy.is_none() ? Vector() : to_vector(dl_dy, "dl_dy", problem_.num_equalities(), "rows of A");
     const Vector dz = dl_dz.is_none() ? Vector() : to_vector(dl_dz, "dl_dz", problem_.num_inequalities(), "rows of G");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "QpSolver");
     QpGradient g;
     {
       py::gil_scoped_release nogil;
@@ -173,7 +165,7 @@ class PyQpSolver {
   void set_settings(const py::kwargs& kw) {
     QpSettings s = solver_.settings();
     apply_settings(s, qp_fields(), kw, "QpSolver.set_settings()");
-    Busy busy(mutex_);
+    Busy busy(mutex_, "QpSolver");
     solver_.set_settings(s);
   }
   py::object problem() const { return ready_ ? py::object(problem_dict(problem_)) : py::object(py::none()); }

@@ -143,7 +143,7 @@ struct QpSettings {
   bool polish = true;
   /// Polishing: give forcing rows (rows all of whose variables sit at an active bound) the
   /// multiplier of smallest magnitude that keeps every sign (their multiplier is not unique
-  /// and the interior point's grows along the central path; kkt/src/qp_polish.cpp).
+  /// and the interior point's grows along the central path; kkt/src/qp_polish_forcing_rows.cpp).
   bool polish_forcing_rows = true;
   /// Gondzio's multiple centrality correctors per iteration (at most; 0 = none) of the
   /// conservative second run, the one that follows a stalled first run (qp_solver.hpp).
