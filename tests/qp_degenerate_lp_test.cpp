@@ -12,12 +12,10 @@
 //   - clean_bound_multipliers: exact componentwise multipliers of the variables at a bound
 //     in the unscaled candidate.
 // Measured on this family (FamilyTable: n = 40 and 80, U ∈ {10, 1e2, 1e3},
-// spread 0…3, seeds 1…12, 288 problems): solved 266 with both, 265 with the cleanup only,
-// 264 with the exact steps only, 263 with neither: on this family the two were worth a
-// handful of problems (5 gained by both against one, 2 lost). Since polishing shrinks the
-// multipliers of forcing rows and accepts any solved polished point (2026-11-29) the
-// family no longer separates them: both 268, cleanup only 269, exact steps only 268,
-// neither 268 (the single cases below still need them); on the
+// spread 0…3, seeds 1…12, 288 problems): solved 268 with both, 269 with the cleanup only,
+// 268 with the exact steps only, 268 with neither. With polishing (which shrinks forcing
+// rows' multipliers and accepts any solved polished point) the family does not separate
+// the two ingredients; the single cases below still need them; on the
 // Maros–Meszaros set they are what moved QSCFXM1, Q25FV47, QGROW7 and LASER to solved. The
 // cases below solve with the defaults and did not solve with the named ingredient switched
 // off (statuses in each test's comment).
