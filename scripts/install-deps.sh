@@ -18,3 +18,5 @@ $SUDO apt-get install -y --no-install-recommends libpetsc-real3.18-dev openmpi-b
 $SUDO apt-get install -y --no-install-recommends clang libclang-rt-14-dev
 # Python bindings (LCPRELAX_WITH_PYTHON: python/, docs/python.md) and their pytest suite.
 $SUDO apt-get install -y --no-install-recommends pybind11-dev python3-numpy python3-scipy python3-pytest python3-dev
+# PyTorch for lcprelax.torch (QpLayer, LcpLayer, RelaxedLcpLoss) and its gradcheck tests.
+$SUDO apt-get install -y --no-install-recommends python3-torch

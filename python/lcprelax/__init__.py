@@ -1,5 +1,8 @@
 """lcprelax: sparse interior-point QP (with an adjoint backward pass), Lemke LCP, readers.
 
+Batched, parallel versions (QpBatch, LemkeBatch, RelaxedLcpBatch) back the PyTorch layers
+of ``lcprelax.torch`` (QpLayer, LcpLayer, RelaxedLcpLoss; imported separately, it needs torch).
+
 The solvers and readers are implemented in C++ (the compiled module ``lcprelax._lcprelax``);
 this package re-exports them. Conventions (docs/python.md, docs/conventions.md):
 
@@ -27,9 +30,15 @@ from ._lcprelax import (  # noqa: F401
     LcpGradient,
     LcpResult,
     LemkeSolver,
+    LcpBatchResult,
+    LemkeBatch,
+    QpBatch,
+    QpBatchResult,
     QpGradient,
     QpResult,
     QpSolver,
+    RelaxedLcpBatch,
+    RelaxedLcpBatchResult,
     UsageError,
     parse_qps,
     parse_siconos_fc2d,
@@ -48,6 +57,12 @@ __all__ = [
     "LemkeSolver",
     "LcpResult",
     "LcpGradient",
+    "QpBatch",
+    "QpBatchResult",
+    "LemkeBatch",
+    "LcpBatchResult",
+    "RelaxedLcpBatch",
+    "RelaxedLcpBatchResult",
     "read_qps",
     "parse_qps",
     "read_siconos_lcp",

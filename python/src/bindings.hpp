@@ -13,6 +13,8 @@
 // through a table of SettingField (unknown name or wrong Python type: TypeError naming it).
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/kkt/qp_problem.hpp>
+#include <lcprelax/kkt/qp_settings.hpp>
+#include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/sparse/types.hpp>
 
 #include <pybind11/pybind11.h>
@@ -34,6 +36,9 @@ void bind_errors(py::module_& m);
 void bind_qp(py::module_& m);
 void bind_lcp(py::module_& m);
 void bind_io(py::module_& m);
+void bind_qp_batch(py::module_& m);
+void bind_lcp_batch(py::module_& m);
+void bind_relaxed_lcp(py::module_& m);
 
 /// Takes a solver for one call or fails: a solver busy in another thread is a UsageError
 /// (std::logic_error "<solver> is in use by another thread").
@@ -142,5 +147,10 @@ SettingField<S> enum_field(const char* name, E S::*member, std::vector<E> values
           },
           [=](const S& s) { return py::object(py::str(to_string(s.*member))); }};
 }
+
+/// The keyword tables of QpSettings (qp.cpp) and LemkeSettings (lcp.cpp), shared by the
+/// single-problem and the batched bindings.
+const std::vector<SettingField<QpSettings>>& qp_fields();
+const std::vector<SettingField<LemkeSettings>>& lemke_fields();
 
 }  // namespace lcprelax::python

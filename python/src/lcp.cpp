@@ -17,8 +17,6 @@
 #include <stdexcept>
 
 namespace lcprelax::python {
-namespace {
-
 const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
   using S = LemkeSettings;
   static const std::vector<SettingField<S>> fields = {
@@ -39,6 +37,8 @@ const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
       int_field("crash_flip_rounds", &S::crash_flip_rounds)};
   return fields;
 }
+
+namespace {
 
 struct PyLcpResult {
   std::string status, message, method;

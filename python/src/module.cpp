@@ -1,7 +1,8 @@
 // Entry point of the compiled module lcprelax._lcprelax (imported by lcprelax/__init__.py).
 // Each concept is bound in its own file: errors.cpp (exception mapping), qp.cpp (QpSolver),
-// lcp.cpp (LemkeSolver), io.cpp (QPS and Siconos readers); convert.cpp holds the
-// NumPy / scipy.sparse conversions they share. Conventions: docs/python.md.
+// lcp.cpp (LemkeSolver), io.cpp (QPS and Siconos readers), qp_batch.cpp,
+// lcp_batch.cpp, relaxed_lcp.cpp (batched solves in parallel, the engines of lcprelax.torch);
+// convert.cpp and batch.cpp hold the NumPy / scipy.sparse conversions they share. Conventions: docs/python.md.
 #include "bindings.hpp"
 
 PYBIND11_MODULE(_lcprelax, m) {
@@ -13,4 +14,7 @@ PYBIND11_MODULE(_lcprelax, m) {
   lcprelax::python::bind_qp(m);
   lcprelax::python::bind_lcp(m);
   lcprelax::python::bind_io(m);
+  lcprelax::python::bind_qp_batch(m);
+  lcprelax::python::bind_lcp_batch(m);
+  lcprelax::python::bind_relaxed_lcp(m);
 }

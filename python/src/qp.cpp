@@ -23,9 +23,6 @@
 #include <stdexcept>
 
 namespace lcprelax::python {
-namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const std::vector<SettingField<QpSettings>>& qp_fields() {
   using S = QpSettings;
@@ -51,6 +48,10 @@ const std::vector<SettingField<QpSettings>>& qp_fields() {
       bool_field("infeasibility_lps", &S::infeasibility_lps), bool_field("check_convexity", &S::check_convexity)};
   return fields;
 }
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct PyQpResult {
   std::string status, message;
