@@ -67,3 +67,9 @@ run "$B/run_learn_convergence" --problems polygon --polygon-data cli --polygon-e
   --csv "$R/learn_convergence_polygon_cli.csv" \
   > "$R/learn_convergence_polygon_cli.txt"
 run "$B/run_report_plots" --results "$R" --out "$R/plots"
+# PyTorch QpLayer against a dense batched PyTorch interior point (needs the Python module and torch).
+if PYTHONPATH="$BUILD/python" python3 -c "import lcprelax.torch" 2>/dev/null; then
+  PYTHONPATH="$BUILD/python" run python3 bench/run_qp_layer.py --csv "$R/qp_layer.csv" > "$R/qp_layer.txt"
+else
+  echo "lcprelax.torch not importable (module not built or no torch): qp_layer skipped" >&2
+fi

@@ -37,6 +37,7 @@ TARGET_BACKWARD = 0.2       # backward / forward time of a QP solve (n >= 10,000
 TARGET_PILE_SLOPE = 1.3     # log-log slope of the pile's CPU time per step against contacts
 TARGET_THREADS = 1.8        # learning samples/s, 2 threads / 1 thread
 TARGET_LEARN_ERROR = 0.01   # largest relative parameter error for "recovered"
+TARGET_QP_LAYER = 10.0      # dense batched PyTorch reference / QpLayer, batch 1,024, 2 threads
 
 
 class ResultError(Exception):
@@ -283,6 +284,20 @@ def learn_threads(results):
              f"≥ {goal(TARGET_THREADS)}: {verdict(lo >= TARGET_THREADS)}", src(name))]
 
 
+def qp_layer(results):
+    name = "qp_layer.csv"
+    rows = read_csv(results, name)
+    big = only(rows, name, batch="1024", threads="2")
+    one = only(rows, name, batch="1024", threads="1")
+    ratio = float(big["reference_over_lcprelax"])
+    return [("PyTorch `QpLayer` forward + backward per sample, relaxed block QP (9 variables), batch 1,024, "
+             "against a dense batched PyTorch interior point",
+             f"2 threads: lcprelax {g(big['lcprelax_us_per_sample'])} µs, reference "
+             f"{g(big['reference_us_per_sample'])} µs (reference / lcprelax {g(ratio)}); 1 thread: "
+             f"{g(one['lcprelax_us_per_sample'])} µs vs {g(one['reference_us_per_sample'])} µs",
+             f"≥ {goal(TARGET_QP_LAYER)}: {verdict(ratio >= TARGET_QP_LAYER)}", src(name))]
+
+
 def ratio_name(case):
     """'plank 1000000x on boxes' -> 'plank 1e6× on boxes'."""
     return re.sub(r"\b1(0{3,})x\b", lambda m: f"1e{len(m.group(1))}×", case)
@@ -333,6 +348,7 @@ def generate(results):
     rows += learn_scene(results)
     rows += learn_cost(results)
     rows += learn_threads(results)
+    rows += qp_layer(results)
     rows += stiff(results)
     rows += softening(results)
     rows += fragility(results)

@@ -35,11 +35,13 @@ std::string size_error(const char* name, Index got_rows, Index got_cols, Index r
 
 std::string bound_error(const char* lname, const char* uname, const Vector& lo, const Vector& hi) {
   for (Index i = 0; i < lo.size(); ++i) {
+    const bool bad_lo = std::isnan(lo(i)) || lo(i) == kInf, bad_hi = std::isnan(hi(i)) || hi(i) == -kInf;
+    if (!bad_lo && !bad_hi && !(lo(i) > hi(i))) continue;  // the common case builds no stream
     std::ostringstream os;
-    if (std::isnan(lo(i)) || lo(i) == kInf) os << lname << "(" << i << ") is " << lo(i);
-    else if (std::isnan(hi(i)) || hi(i) == -kInf) os << uname << "(" << i << ") is " << hi(i);
-    else if (lo(i) > hi(i)) os << lname << "(" << i << ") = " << lo(i) << " > " << uname << "(" << i << ") = " << hi(i);
-    if (!os.str().empty()) return os.str();
+    if (bad_lo) os << lname << "(" << i << ") is " << lo(i);
+    else if (bad_hi) os << uname << "(" << i << ") is " << hi(i);
+    else os << lname << "(" << i << ") = " << lo(i) << " > " << uname << "(" << i << ") = " << hi(i);
+    return os.str();
   }
   return {};
 }
