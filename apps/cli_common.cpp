@@ -13,7 +13,29 @@
 namespace lcprelax::cli {
 
 void add_json_flag(CLI::App& command, bool& json) {
-  command.add_flag("--json", json, "Print exactly one JSON object on stdout");
+  command.add_flag("--json", json,
+                   "print exactly one JSON object on stdout instead of the report (fields: docs/cli.md)");
+}
+
+std::string exit_codes_help(const std::string& success, const std::string& failure) {
+  return "Exit codes:\n"
+         "  0  " +
+         (success.empty() ? std::string("success") : success) +
+         "\n"
+         "  1  " +
+         (failure.empty() ? std::string("the run finished but did not succeed (the status says why)") : failure) +
+         "; also an internal error or out of memory\n"
+         "  2  bad input: a missing or malformed file, an invalid option value or an unwritable\n"
+         "     output path; the message is on stderr (with --json stdout also holds\n"
+         "     {\"status\": \"invalid_input\", \"message\": ...}) and nothing is computed\n";
+}
+
+CLI::Option* add_threads_option(CLI::App& command, int& threads, const std::string& over) {
+  return command
+      .add_option("--threads", threads,
+                  "threads over " + over + "; 0: all cores (OpenMP's default, capped by OMP_NUM_THREADS); at most " +
+                      std::to_string(kMaxThreads) + "; the results are the same for every thread count")
+      ->capture_default_str();
 }
 
 Json number_or_null(double v) {
@@ -45,7 +67,7 @@ void require_option(bool ok, const std::string& option, const std::string& requi
 
 void require_threads(int threads) {
   require_option(threads >= 0 && threads <= kMaxThreads, "--threads",
-                 "must be in [0, " + std::to_string(kMaxThreads) + "] (0: OpenMP default), got " + std::to_string(threads));
+                 "must be in [0, " + std::to_string(kMaxThreads) + "] (0: all cores), got " + std::to_string(threads));
 }
 
 learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, std::uint64_t seed,
@@ -74,11 +96,14 @@ learn::TrainSettings learn_train_settings(int epochs, int batch, int threads, st
 
 void add_learn_stop_options(CLI::App& command, LearnStopOptions& stop) {
   command.add_option("--rel-loss-tol", stop.rel_loss_tol,
-                     "converged when |C_{k-1} - C_k| / max(|C_{k-1}|, |C_k|, 1) <= this (C: training loss) ...")
+                     "training stops early (converged) once, for --patience epochs in a row, the mean training "
+                     "loss changes by at most this, relative to max(|loss|, 1), ...")
       ->capture_default_str();
-  command.add_option("--grad-tol", stop.grad_tol, "... and the 2-norm of the mean gradient over the training set w.r.t. the free (log) parameters <= this ...")
+  command.add_option("--grad-tol", stop.grad_tol,
+                     "... and the length (2-norm) of its gradient with respect to the learned parameters (log "
+                     "scale for positive ones) is at most this ...")
       ->capture_default_str();
-  command.add_option("--patience", stop.patience, "... for this many consecutive epochs (0: always run --epochs)")
+  command.add_option("--patience", stop.patience, "... for this many epochs in a row (0: always run --epochs epochs)")
       ->capture_default_str();
 }
 

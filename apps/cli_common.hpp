@@ -80,6 +80,17 @@ void add_train_outcome(Json& j, const learn::TrainResult& result, int epochs_cap
 /// Adds the `--json` flag every subcommand accepts.
 void add_json_flag(CLI::App& command, bool& json);
 
+/// The "Exit codes" section of a command's --help (its footer): 0 with `success`, 1 with
+/// `failure` (what success and a failed run mean for this command; empty: the generic
+/// wording), 2 bad input. main.cpp, the subcommands and the learn applications each set it.
+std::string exit_codes_help(const std::string& success = "", const std::string& failure = "");
+
+/// Adds `--threads T` (default `threads`, normally 0) with one help text for every command:
+/// 0 means all cores (OpenMP's default, which OMP_NUM_THREADS caps); `over` names what runs
+/// in parallel ("islands", "samples"). The results do not depend on T (batch.hpp: sums in a
+/// fixed order; the simulator gathers islands in island order). Validated by require_threads.
+CLI::Option* add_threads_option(CLI::App& command, int& threads, const std::string& over);
+
 /// A JSON number, or null when v is NaN or ±∞ (JSON has no such numbers).
 Json number_or_null(double v);
 /// A JSON array of numbers (non-finite entries as null).

@@ -1,6 +1,7 @@
 // `lcprelax lcp FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` and
 // `lcprelax fc2d FILE.dat [--solver lemke|ipm] [--solution OUT.json] [--json]` (docs/cli.md):
-// Siconos numerics problems, errors as Siconos defines them (io/siconos_errors.hpp).
+// Siconos numerics problems, errors as Siconos defines them (io/siconos_errors.hpp). Human
+// output: a brief report (cli_report.hpp) of the same fields, status first.
 // lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds, and message when
 // not solved; OUT: z, w, written only when solved (else a line on stderr says so).
 // fc2d JSON: status, contacts, error, seconds (lemke: pivots, crash_sweeps, crash_pivots,
@@ -9,6 +10,7 @@
 // then bad input (exit 2) saying so. Lemke starts by default from the basis suggested by
 // projected Gauss–Seidel sweeps (--crash pgs, lcp/fc2d_pgs.hpp; crash start of lemke.hpp).
 #include "cli_common.hpp"
+#include "cli_report.hpp"
 
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
@@ -18,6 +20,7 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/core/errors.hpp>
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 
@@ -40,12 +43,31 @@ LcpResult solve(const SparseMatrix& M, const Vector& q, const std::string& solve
   return lemke.solve();
 }
 
+// The JSON object, or the brief report (cli_report.hpp) made from the same fields: status
+// first, then the problem's size, the Siconos error, the solver's work and the time.
 void report(const LcpOptions& o, const Json& j) {
   if (o.json) {
     print_json(j);
     return;
   }
-  for (const auto& [key, value] : j.items()) std::cout << key << ": " << value.dump() << '\n';
+  const auto number = [&j](const char* key) {
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+  };
+  BriefReport r;
+  r.add("status", j["status"].get<std::string>());
+  if (j.contains("message")) r.add("message", j["message"].get<std::string>());
+  if (j.contains("n")) r.add_count("size", j["n"].get<long long>(), "unknowns");
+  if (j.contains("contacts")) r.add_count("contacts", j["contacts"].get<long long>());
+  r.add("Siconos error", number("error"), "", 3);
+  if (j.contains("iterations")) r.add_count("iterations", j["iterations"].get<long long>(), "(interior point)");
+  if (j.contains("pivots")) r.add_count("pivots", j["pivots"].get<long long>(), "(Lemke)");
+  if (j.contains("start")) {
+    r.add("start", j["start"].get<std::string>() + " (" + std::to_string(j["crash_sweeps"].get<int>()) +
+                       " Gauss-Seidel sweeps, " + std::to_string(j["crash_pivots"].get<long long>()) +
+                       " pivots from their basis)");
+  }
+  r.add("time", number("seconds"), "s", 3);
+  r.print();
 }
 
 // --solution OUT is written only for a solved problem (a failed solve's z, r can be huge and
@@ -123,31 +145,44 @@ int run_fc2d(const LcpOptions& o) {
 
 Command add_command(CLI::App& parent, const char* name, const char* help, int (*run)(const LcpOptions&)) {
   auto options = std::make_shared<LcpOptions>();
+  const bool fc2d = run == run_fc2d;
   CLI::App* app = parent.add_subcommand(name, help);
-  app->add_option("file", options->file, "Siconos numerics .dat file")->required();
-  app->add_option("--solver", options->solver, "lemke (default) or ipm (monotone LCPs)")
+  app->add_option("file", options->file,
+                  fc2d ? "Siconos numerics 2-D frictional contact file (.dat; docs/formats.md)"
+                       : "Siconos numerics LCP file (.dat; docs/formats.md)")
+      ->required();
+  app->add_option("--solver", options->solver,
+                  fc2d ? "lemke (pivoting; the default) or ipm (interior point; refused unless the problem's LCP is "
+                         "monotone, which a frictional contact problem generally is not)"
+                       : "lemke (pivoting; any M, the default) or ipm (interior point; needs a monotone M, i.e. "
+                         "M + Mᵀ positive semidefinite)")
       ->check(CLI::IsMember({"lemke", "ipm"}))
       ->capture_default_str();
-  app->add_option("--solution", options->solution, "Write the solution to this JSON file");
-  if (run == run_fc2d) {
+  app->add_option("--solution", options->solution,
+                  fc2d ? "write the reactions r and velocities u = W r + q to this JSON file (only when solved)"
+                       : "write z and w = M z + q to this JSON file (only when solved)");
+  if (fc2d) {
     app->add_option("--crash", options->crash,
-                    "lemke: start basis from projected Gauss-Seidel sweeps (pgs) or the all-w basis (none)")
+                    "lemke's first basis: pgs (the one that projected Gauss-Seidel sweeps suggest) or none "
+                    "(Lemke's usual start)")
         ->capture_default_str();
-    app->add_option("--crash-sweeps", options->crash_sweeps, "lemke with --crash pgs: most PGS sweeps")
+    app->add_option("--crash-sweeps", options->crash_sweeps, "most Gauss-Seidel sweeps of --crash pgs")
         ->capture_default_str();
   }
   add_json_flag(*app, options->json);
+  app->footer(exit_codes_help("solved (status solved; the Siconos error is printed)",
+                              "not solved (status ray_termination, pivot_limit or numerical_error; message says why)"));
   return Command{app, [options, run] { return run(*options); }};
 }
 
 }  // namespace
 
 Command add_lcp_command(CLI::App& parent) {
-  return add_command(parent, "lcp", "Solve a Siconos LCP file (0 ≤ z ⊥ Mz + q ≥ 0)", run_lcp);
+  return add_command(parent, "lcp", "Solve a linear complementarity problem 0 ≤ z ⊥ Mz + q ≥ 0 read from a Siconos file", run_lcp);
 }
 
 Command add_fc2d_command(CLI::App& parent) {
-  return add_command(parent, "fc2d", "Solve a Siconos 2-D frictional contact file as an LCP", run_fc2d);
+  return add_command(parent, "fc2d", "Solve a 2-D frictional contact problem read from a Siconos file (as an LCP)", run_fc2d);
 }
 
 }  // namespace lcprelax::cli

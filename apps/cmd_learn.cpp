@@ -1,4 +1,4 @@
-// `lcprelax learn block|polygon ...` (docs/cli.md): the parent subcommand. The learning
+// `lcprelax learn block|polygon|scene ...` (docs/cli.md): the parent subcommand. The learning
 // applications register themselves (cli_common.hpp, register_learn_application) from
 // their own files, so each stays self-contained.
 #include "cli_common.hpp"
@@ -21,7 +21,7 @@ bool register_learn_application(LearnApplicationFactory factory) {
 }
 
 Command add_learn_command(CLI::App& parent) {
-  CLI::App* learn = parent.add_subcommand("learn", "learn contact parameters from transitions (block, polygon)");
+  CLI::App* learn = parent.add_subcommand("learn", "learn contact parameters (friction, mass, inertia, shape) from motion data: block, polygon or scene");
   learn->require_subcommand(1);
   auto applications = std::make_shared<std::vector<Command>>();
   for (LearnApplicationFactory f : learn_registry()) applications->push_back(f(*learn));

@@ -4,8 +4,9 @@
 //  [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--momentum β] [--soft-nonnegativity] [--soft-lambdas]
 //  [--l1-softness] [--max-dissipation none|qp|ext] [--a1 … --a5] [--regularization ε]
 //  [--log FILE.csv] [--checkpoint FILE] [--resume FILE]
-//  [--landscape OUT] [--param physical|pair|elementwise|residual] [--json]` (docs/cli.md): learns the friction coefficient of the seeds'
-// 1-D block (Parmar, Halm & Posa, IROS 2021) from transitions (v, u, v_next), generated
+//  [--landscape OUT] [--param physical|pair|elementwise|residual] [--json]` (docs/cli.md): learns the
+// friction coefficient of the 1-D block of Parmar, Halm & Posa (IROS 2021; models/block1d.hpp)
+// from transitions (v, u, v_next), generated
 // from --true-mu (noise σ relative to the RMS of v_next, learn/block_dataset.hpp) or read
 // from --data. --checkpoint/--resume: a run that survives a kill (cmd_learn_checkpoint.hpp).
 // JSON: method, true, initial, learned (parameter name → value; true is null for a --data
@@ -23,9 +24,13 @@
 // --learn-mg and --landscape are refused with exit 2). Their initial values are the
 // physical model at --init-mu. JSON also: param, and learned_groups (group → name → value,
 // block_param_group); for a nonphysical param, true lists the truth in that param's terms.
+// Human output: a brief report (learn_report.hpp) of the same fields. --threads defaults to
+// 0 (all cores), as in every command: the sums are reduced in a fixed order (batch.hpp), so
+// the result is bitwise the same for every thread count (tests/cli_threads_default_test.cpp).
 // Exit 0 success, 1 when a sample's solve failed, 2 on bad input.
 #include "cli_common.hpp"
 #include "cmd_learn_checkpoint.hpp"
+#include "learn_report.hpp"
 
 #include <lcprelax/mpi/mpi_session.hpp>
 
@@ -55,7 +60,7 @@ struct LearnBlockOptions {
   int epochs = 1000;
   LearnStopOptions stop;
   int batch = 0;
-  int threads = 1;
+  int threads = 0;
   int samples = 200;
   std::uint64_t seed = 1;
   double noise = 0.0;
@@ -104,8 +109,9 @@ std::pair<std::string, std::string> landscape_paths(const std::string& landscape
           has_ext ? landscape : landscape + ".png"};
 }
 
-void run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, const learn::BlockLossSettings& s,
-                   double true_mu) {
+// Writes the landscape; returns the files written (the CSV, and the plots with Cairo).
+std::string run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, const learn::BlockLossSettings& s,
+                          double true_mu) {
   const auto [csv, picture] = landscape_paths(o.landscape);
   const double ref = std::isfinite(true_mu) ? true_mu : o.init_mu;
   const learn::BlockLandscape L = learn::block_landscape(
@@ -114,14 +120,16 @@ void run_landscape(const LearnBlockOptions& o, const learn::BlockDataset& data, 
   learn::write_landscape_csv(csv, L);
   if (!line_plot_available()) {
     std::cerr << "lcprelax learn block: built without Cairo: wrote " << csv << " but no picture\n";
-    return;
+    return csv;
   }
-  const std::vector<std::string> written = learn::write_landscape_plot(picture, L, true_mu);
-  if (!o.json) {
-    std::cout << "landscape: " << csv;
-    for (const std::string& w : written) std::cout << ", " << w;
-    std::cout << '\n';
-  }
+  std::string files = csv;
+  for (const std::string& w : learn::write_landscape_plot(picture, L, true_mu)) files += ", " + w;
+  return files;
+}
+
+// The unit of a parameter of this command (a nonphysical --param's extras: docs/cli.md).
+std::string block_parameter_unit(const std::string& name) {
+  return name == "mass" ? "kg" : name == "mg" ? "N·s" : "";
 }
 
 int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
@@ -205,7 +213,8 @@ int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
   const learn::BatchResult final_eval = learn::evaluate_mean(*objective, theta, all, o.threads, t.distributed);
   failed += final_eval.failed;
   const double seconds = clock.seconds();
-  if (!o.landscape.empty() && mpi::mpi_rank() == 0) run_landscape(o, data, s, true_mu);
+  std::string landscape_files;
+  if (!o.landscape.empty() && mpi::mpi_rank() == 0) landscape_files = run_landscape(o, data, s, true_mu);
 
   Json j;
   j["method"] = learn::to_string(method);
@@ -241,62 +250,102 @@ int run_learn_block(const LearnBlockOptions& o, const CLI::App& app) {
   if (o.json) {
     print_json(j);
   } else {
-    std::cout << "method " << j["method"].get<std::string>();
-    if (physical) {
-      std::cout << ": mu " << o.init_mu << " -> " << theta.value("mu");
-      if (std::isfinite(true_mu)) std::cout << " (true " << true_mu << ")";
-    } else {
-      std::cout << ", param " << o.param << ": learned " << j["learned_groups"].dump();
-    }
-    std::cout << ", final loss " << j["final_loss"].dump() << ", " << j["epochs"].get<int>() << " epochs ("
-              << j["stop_reason"].get<std::string>() << "), " << seconds << " s";
-    if (o.epochs == 0) std::cout << ", gradient " << j["gradient"].dump();
-    std::cout << '\n';
+    BriefReport r;
+    add_training_status(r, j, failed > 0);
     if (failed > 0)
-      std::cout << failed << " failed sample solves ("
-                << (final_eval.first_failure.empty() ? result.first_failure : final_eval.first_failure) << ")\n";
+      r.add("first failure", final_eval.first_failure.empty() ? result.first_failure : final_eval.first_failure);
+    r.add("method", o.method + " loss, " + o.param + " parameters");
+    r.add("samples", std::to_string(data.size()) + (o.data.empty() ? " generated" : " from " + o.data) +
+                         (failed > 0 ? ", " + std::to_string(failed) + " failed solves" : ""));
+    add_parameter_lines(r, j, block_parameter_unit);
+    r.add("final loss", final_eval.evaluated > 0 ? final_eval.loss : std::nan(""),
+          method == learn::BlockMethod::relaxed ? "(mean relaxed-problem value per sample)"
+                                                : "(m/s)² (mean squared velocity error per sample)");
+    if (o.epochs == 0 && physical) r.add("gradient", j["gradient"].is_number() ? j["gradient"].get<double>() : std::nan(""), "d(loss)/d(mu)");
+    if (o.epochs == 0 && !physical)
+      for (const auto& [name, g] : j["gradient"].items())
+        r.add("gradient " + name, g.is_number() ? g.get<double>() : std::nan(""));
+    add_training_effort(r, j, o.epochs);
+    if (!landscape_files.empty()) r.add("landscape", landscape_files);
+    r.print();
   }
   return failed > 0 ? kExitSolveFailed : kExitSuccess;
 }
 
 Command add_learn_block_command(CLI::App& learn) {
   auto o = std::make_shared<LearnBlockOptions>();
-  CLI::App* app = learn.add_subcommand("block", "learn the friction of the seeds' 1-D block (hard|relaxed|convex)");
-  app->add_option("--method", o->method, "hard, relaxed or convex")->capture_default_str();
-  app->add_option("--init-mu", o->init_mu, "initial friction coefficient")->capture_default_str();
-  app->add_option("--true-mu", o->true_mu, "true friction coefficient of generated data (default 0.1)");
-  app->add_option("--epochs", o->epochs, "most training epochs (0: evaluate loss and gradient only)")->capture_default_str();
+  CLI::App* app = learn.add_subcommand(
+      "block", "learn the friction coefficient of a block sliding on the ground (1-D) from its velocity transitions");
+  app->add_option("--method", o->method,
+                  "loss: hard (error of the exact model's prediction), relaxed (the relaxed complementarity "
+                  "problem of Parmar, Halm & Posa 2021, which keeps a gradient where hard has none) or convex "
+                  "(error of the convex model's prediction)")
+      ->capture_default_str();
+  app->add_option("--init-mu", o->init_mu, "initial friction coefficient (the start of training)")->capture_default_str();
+  app->add_option("--true-mu", o->true_mu,
+                  "true friction coefficient of the generated data (default 0.1); with --data only reported");
+  app->add_option("--epochs", o->epochs,
+                  "most training epochs (passes over the data); 0: only evaluate the loss and its gradient")
+      ->capture_default_str();
   add_learn_stop_options(*app, o->stop);
-  app->add_option("--batch", o->batch, "mini-batch size (0: all samples)")->capture_default_str();
-  app->add_option("--threads", o->threads, "OpenMP threads (0: default)")->capture_default_str();
-  app->add_option("--samples", o->samples, "generated transitions")->capture_default_str();
-  app->add_option("--seed", o->seed, "seed of the data and the shuffle")->capture_default_str();
-  app->add_option("--noise", o->noise, "Gaussian noise on v_next, relative to its RMS")->capture_default_str();
-  app->add_option("--slip-max", o->slip_max, "largest |v*| of slipping samples, in units of μ·mg/m")
+  app->add_option("--batch", o->batch, "samples per optimizer step (0: all samples)")->capture_default_str();
+  add_threads_option(*app, o->threads, "samples");
+  app->add_option("--samples", o->samples, "number of generated transitions (half sticking, half sliding)")
       ->capture_default_str();
-  app->add_option("--data", o->data, "CSV of transitions (columns v, v_next, u)");
-  app->add_option("--mg", o->mg, "weight impulse m·g per step, N·s")->capture_default_str();
-  app->add_option("--mass", o->mass, "mass, kg")->capture_default_str();
+  app->add_option("--seed", o->seed, "random seed of the generated data and of the sample order")->capture_default_str();
+  app->add_option("--noise", o->noise,
+                  "Gaussian noise added to v_next: standard deviation relative to the RMS of v_next (0.01 = 1%)")
+      ->capture_default_str();
+  app->add_option("--slip-max", o->slip_max,
+                  "largest |v + u/m| of the generated sliding samples, in units of mu*mg/m (the most friction can "
+                  "change the velocity in one step)")
+      ->capture_default_str();
+  app->add_option("--data", o->data,
+                  "read the transitions from this CSV file (columns v, v_next, u; docs/formats.md) instead of "
+                  "generating them");
+  app->add_option("--mg", o->mg, "normal impulse of one step, m*g*dt, in N*s")->capture_default_str();
+  app->add_option("--mass", o->mass, "mass of the block, kg")->capture_default_str();
   app->add_flag("--learn-mass", o->learn_mass, "learn the mass too");
-  app->add_flag("--learn-mg", o->learn_mg, "learn m·g too");
-  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
-  app->add_option("--lr", o->lr, "learning rate (on log μ)")->capture_default_str();
-  app->add_option("--momentum", o->momentum, "SGD momentum")->capture_default_str();
-  app->add_flag("--soft-nonnegativity", o->soft_nonnegativity, "relaxed: Mλ + q + s ≥ 0");
-  app->add_flag("--soft-lambdas", o->soft_lambdas, "relaxed: λ + t ≥ 0");
-  app->add_flag("--l1-softness", o->l1_softness, "relaxed: linear slack penalties");
-  app->add_option("--max-dissipation", o->max_dissipation, "relaxed: none, qp or ext")->capture_default_str();
+  app->add_flag("--learn-mg", o->learn_mg, "learn the normal impulse m*g*dt too");
+  app->add_option("--optimizer", o->optimizer,
+                  "sgd (with --momentum), adam or lbfgs (quasi-Newton with a line search; needs --batch 0)")
+      ->capture_default_str();
+  app->add_option("--lr", o->lr, "learning rate (the optimizer steps on log mu)")->capture_default_str();
+  app->add_option("--momentum", o->momentum, "sgd: momentum")->capture_default_str();
+  app->add_flag("--soft-nonnegativity", o->soft_nonnegativity,
+                "relaxed: let M*lambda + q go negative at a cost (slack s weighted by --a3)");
+  app->add_flag("--soft-lambdas", o->soft_lambdas, "relaxed: let the impulses lambda go negative at a cost (slack t weighted by --a4)");
+  app->add_flag("--l1-softness", o->l1_softness,
+                "relaxed: penalize those slacks linearly (a3*sum(s), a4*sum(t)) instead of quadratically");
+  app->add_option("--max-dissipation", o->max_dissipation,
+                  "relaxed: add the maximum-dissipation term weighted by --a5: none, qp (inside the relaxed "
+                  "problem) or ext (after it, at its solution)")
+      ->capture_default_str();
+  static const char* const kWeights[5] = {
+      "relaxed: weight a1 of the prediction error |v_predicted - v_next|^2",
+      "relaxed: weight a2 of the complementarity violation lambda'(M*lambda + q), which is 0 for an exact "
+      "contact solution",
+      "relaxed: weight a3 of the slack s of --soft-nonnegativity ((a3/2)|s|^2)",
+      "relaxed: weight a4 of the slack t of --soft-lambdas ((a4/2)|t|^2)",
+      "relaxed: weight a5 of the maximum-dissipation term |friction impulse - mu*mg|^2 of --max-dissipation"};
   for (int i = 0; i < 5; ++i)
-    app->add_option("--a" + std::to_string(i + 1), o->a[i], "relaxed weight a" + std::to_string(i + 1))
-        ->capture_default_str();
-  app->add_option("--regularization", o->regularization, "relaxed: ε of (ε/2)‖x‖² (the seeds' 1e-3·I)")
+    app->add_option("--a" + std::to_string(i + 1), o->a[i], kWeights[i])->capture_default_str();
+  app->add_option("--regularization", o->regularization,
+                  "relaxed: weight e of the term (e/2)|x|^2 that keeps the relaxed problem strictly convex")
       ->capture_default_str();
-  app->add_option("--log", o->log, "CSV log of every epoch");
-  app->add_option("--param", o->param, "parameterization: physical, pair, elementwise or residual (learn/block_param.hpp)")
+  app->add_option("--log", o->log, "write one CSV line per epoch (loss, gradient norm, parameters) to this file");
+  app->add_option("--param", o->param,
+                  "what is learned: physical (mu; the default), pair (a friction coefficient per direction, a "
+                  "compliance, a velocity offset), elementwise (every entry of the contact problem) or residual "
+                  "(mu and a linear correction of the velocity); the last three need --method hard or relaxed")
       ->capture_default_str();
-  app->add_option("--landscape", o->landscape, "write OUT.csv and plots of every method's loss over μ");
+  app->add_option("--landscape", o->landscape,
+                  "write OUT.csv and plots of every method's loss and gradient over mu, from 0.05 to 50 times the "
+                  "true mu (OUT may end in .png or .svg)");
   add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);
+  app->footer(exit_codes_help("trained (or evaluated, with --epochs 0)",
+                              "a sample's contact solve failed (status failed, see \"first failure\")"));
   return Command{app, [o, app]() { return run_learn_block(*o, *app); }};
 }
 

@@ -39,10 +39,12 @@
 // samples, validation_loss, relative_error (polygon_relative_error) and failed. --log: the
 // trainer's CSV per epoch (θ included). --plot OUT.ext: each learned parameter's relative
 // error against epoch (OUT.ext) and against wall time (OUT-time.ext), log y axis, via
-// scenes/line_plot.hpp (needs Cairo). Exit 0; 1 when more than 5% of the samples fail to
-// solve at the learned θ; 2 on bad input.
+// scenes/line_plot.hpp (needs Cairo). Human output: a brief report (learn_report.hpp) of the
+// same fields. Exit 0; 1 when more than 5% of the samples fail to solve at the learned θ;
+// 2 on bad input.
 #include "cli_common.hpp"
 #include "cmd_learn_checkpoint.hpp"
+#include "learn_report.hpp"
 
 #include <lcprelax/mpi/mpi_session.hpp>
 
@@ -190,43 +192,69 @@ int run_learn_polygon(const LearnPolygonOptions& o, const CLI::App& app) {
     if (theta[k].learn) errors[theta[k].name] = number_or_null(learn::polygon_relative_error(theta, true_theta, k));
   j["relative_error"] = errors;
   j["failed"] = final_eval.failed;
+  const bool failed = final_eval.failed * 20 > static_cast<int>(training.size());
   if (o.json) {
     print_json(j);
   } else {
-    std::cout << "method " << j["method"].get<std::string>() << ", " << data.transitions.size() << " samples, "
-              << j["epochs"].get<int>() << " epochs (" << j["stop_reason"].get<std::string>() << "), " << seconds << " s, final loss " << final_eval.loss << "\n";
-    for (Index k = 0; k < theta.size(); ++k)
-      if (theta[k].learn)
-        std::cout << "  " << theta[k].name << ": true " << true_theta[k].value << ", initial " << initial[k].value
-                  << ", learned " << theta[k].value << " (error " << errors[theta[k].name].get<double>() << ")\n";
-    if (final_eval.failed > 0) std::cout << final_eval.failed << " failed sample solves (" << final_eval.first_failure << ")\n";
+    BriefReport r;
+    add_training_status(r, j, failed);
+    if (final_eval.failed > 0) r.add("first failure", final_eval.first_failure);
+    r.add("method", o.method + " loss");
+    r.add("samples", std::to_string(data.transitions.size()) + " (" + std::to_string(training.size()) + " training, " +
+                         std::to_string(validation.size()) + " validation; " + std::to_string(final_eval.failed) +
+                         " failed)");
+    add_parameter_lines(r, j, parameter_unit);
+    r.add("final loss", final_eval.loss, "(mean over the training samples)");
+    r.add("validation loss", final_validation.loss, "(mean over the validation samples)");
+    add_training_effort(r, j, o.epochs);
+    if (!o.plot.empty()) r.add("plot", o.plot);
+    r.print();
   }
-  return final_eval.failed * 20 > static_cast<int>(training.size()) ? kExitSolveFailed : kExitSuccess;
+  return failed ? kExitSolveFailed : kExitSuccess;
 }
 
 Command add_learn_polygon_command(CLI::App& learn) {
   auto o = std::make_shared<LearnPolygonOptions>();
-  CLI::App* app = learn.add_subcommand("polygon", "learn mu, mass, inertia and geometry of a tumbling polygon");
-  app->add_option("--method", o->method, "hard, relaxed or convex")->capture_default_str();
-  app->add_option("--epochs", o->epochs, "most training epochs (0: evaluate only)")->capture_default_str();
+  CLI::App* app = learn.add_subcommand(
+      "polygon", "learn friction, mass, inertia and shape of a polygon tumbling on the ground from its motion");
+  app->add_option("--method", o->method,
+                  "loss: hard (error of the exact model's prediction), relaxed (relaxed complementarity problem; "
+                  "default) or convex (error of the convex model's prediction)")
+      ->capture_default_str();
+  app->add_option("--epochs", o->epochs, "most training epochs (passes over the data); 0: only evaluate")
+      ->capture_default_str();
   add_learn_stop_options(*app, o->stop);
-  app->add_option("--batch", o->batch, "mini-batch size (0: all training samples)")->capture_default_str();
-  app->add_option("--threads", o->threads, "OpenMP threads (0: default)")->capture_default_str();
-  app->add_option("--samples", o->samples, "generated transitions (contact steps)")->capture_default_str();
-  app->add_option("--seed", o->seed, "seed of data, initial values and shuffle")->capture_default_str();
-  app->add_option("--noise", o->noise, "Gaussian noise sigma on q and v (SI units)")->capture_default_str();
+  app->add_option("--batch", o->batch, "samples per optimizer step (0: all training samples)")->capture_default_str();
+  add_threads_option(*app, o->threads, "samples");
+  app->add_option("--samples", o->samples, "number of generated transitions (steps with contact)")->capture_default_str();
+  app->add_option("--seed", o->seed, "random seed of the data, the initial values and the sample order")
+      ->capture_default_str();
+  app->add_option("--noise", o->noise, "Gaussian noise added to the recorded positions and velocities (SI units)")
+      ->capture_default_str();
   app->add_option("--data-model", o->data_model, "contact model that generates the data: lcp or convex")
       ->check(CLI::IsMember({"lcp", "convex"}))
       ->capture_default_str();
-  app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
-  app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground")->capture_default_str();
-  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; full batch only)")->capture_default_str();
-  app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia, metres, radians)")->capture_default_str();
+  app->add_option("--perturb", o->perturb,
+                  "how far the initial values start from the truth: mu, mass and inertia times 1 +/- F, vertices "
+                  "by F/2 of the polygon's radius")
+      ->capture_default_str();
+  app->add_option("--learn", o->learn, "what is learned, a comma-separated list of mu, mass, inertia, vertices, ground")
+      ->capture_default_str();
+  app->add_option("--optimizer", o->optimizer,
+                  "sgd, adam, lbfgs (quasi-Newton with a line search; needs --batch 0) or lm "
+                  "(Levenberg-Marquardt; needs --method convex and --batch 0)")
+      ->capture_default_str();
+  app->add_option("--lr", o->lr, "learning rate (steps on log mu, log mass, log inertia; metres; radians)")
+      ->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
-  app->add_option("--log", o->log, "CSV log of every epoch");
-  app->add_option("--plot", o->plot, "relative errors against epoch and wall time (OUT.png|svg, OUT-time.*)");
+  app->add_option("--log", o->log, "write one CSV line per epoch (loss, gradient norm, parameters) to this file");
+  app->add_option("--plot", o->plot,
+                  "plot each parameter's relative error against epoch (OUT.png or OUT.svg) and wall time "
+                  "(OUT-time.png or .svg)");
   add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);
+  app->footer(exit_codes_help("trained (or evaluated, with --epochs 0)",
+                              "more than 5% of the training samples failed to solve at the learned parameters"));
   return Command{app, [o, app]() { return run_learn_polygon(*o, *app); }};
 }
 

@@ -18,7 +18,8 @@
 // simulator with random pushes (SceneDatasetSettings defaults, seed S, noise σ on q and v),
 // contact steps only. The truth is the scene's parameters; the initial values perturb every
 // learned one by F (perturb_scene_parameters, seed S), or come from an earlier run's JSON
-// result (--init-from). 20% of the transitions (seed S) are held out for validation.
+// result (--init-from, learn_init_from.hpp). 20% of the transitions (seed S) are held out for
+// validation.
 // --learn gap,residual: per class a gap offset (m), a 3×4 residual W on v* (scene_params.hpp).
 // --softening (convex only): the normal softening of the convex loss and of the generated
 // data (models/normal_softening.hpp); default the scene's ("softening" in the scene JSON,
@@ -27,10 +28,13 @@
 // parameters, final_loss, epochs, stop_reason, converged, seconds, transitions, islands,
 // contacts, failed_islands, failed; with --portfolio also portfolio, chosen_recipe:
 // learn/portfolio.hpp, docs/cli.md); progress per epoch on stderr unless --json; --log the
-// trainer's CSV; --plot each learned parameter's relative error against wall time.
+// trainer's CSV; --plot each learned parameter's relative error against wall time. Human
+// output: a brief report (learn_report.hpp) of the same fields.
 // Exit 0; 1 when more than 5% of the transitions fail at the learned θ; 2 on bad input.
 #include "cli_common.hpp"
 #include "cmd_learn_checkpoint.hpp"
+#include "learn_init_from.hpp"
+#include "learn_report.hpp"
 #include "learn_scene_portfolio.hpp"
 
 #include <lcprelax/core/errors.hpp>
@@ -43,7 +47,6 @@
 #include <lcprelax/scenes/scene_json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -88,42 +91,6 @@ struct LearnSceneOptions {
   bool json = false;
   LearnCheckpointOptions checkpoint;
 };
-
-// --init-from: values from the "learned" map of an earlier run's JSON result: every
-// parameter this run learns must be there (its initial value); an entry for a parameter this
-// run holds fixed sets that fixed value (so that a run can continue an earlier one on a
-// subset of its parameters, block by block); an entry naming no parameter is an error.
-void set_initial_values_from(const std::string& path, learn::ParameterSet& theta) {
-  std::ifstream in(path);
-  if (!in) throw InputError("--init-from: cannot read '" + path + "'");
-  Json j;
-  try {
-    j = Json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError("--init-from '" + path + "': not JSON (" + e.what() + ")");
-  }
-  if (!j.is_object() || !j.contains("learned") || !j["learned"].is_object())
-    throw InputError("--init-from '" + path + "': no \"learned\" object (a JSON result of learn scene --json)");
-  const Json& learned = j["learned"];
-  Vector v = theta.values();
-  std::size_t used = 0;
-  for (Index k = 0; k < theta.size(); ++k) {
-    const auto it = learned.find(theta[k].name);
-    if (it == learned.end()) {
-      if (theta[k].learn)
-        throw InputError("--init-from '" + path + "': learned." + theta[k].name + " is missing (learned by this run)");
-      continue;
-    }
-    if (!it->is_number() || !std::isfinite(it->get<double>()))
-      throw InputError("--init-from '" + path + "': learned." + theta[k].name + " is not a finite number");
-    v(k) = it->get<double>();
-    ++used;
-  }
-  if (used != learned.size())
-    throw InputError("--init-from '" + path + "': learned has " + std::to_string(learned.size()) +
-                     " entries, of which only " + std::to_string(used) + " name a parameter of this scene");
-  theta.set_values(v);
-}
 
 Json values(const learn::ParameterSet& theta) {
   Json j = Json::object();
@@ -316,91 +283,114 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   j["cold_contacts"] = st.cold_contacts;
   j["proximal_solves"] = st.proximal_solves;
   j["failed"] = final_eval.failed;
+  const bool failed = final_eval.failed * 20 > static_cast<int>(training.size());
   if (o.json) {
     print_json(j);
   } else {
-    std::cout << "method " << j["method"].get<std::string>() << ", " << data.transitions.size() << " transitions, "
-              << j["epochs"].get<int>() << " epochs (" << j["stop_reason"].get<std::string>() << "), " << seconds
-              << " s, final loss " << final_eval.loss << ", largest relative error " << worst << "\n";
-    for (Index k = 0; k < theta.size(); ++k)
-      if (theta[k].learn)
-        std::cout << "  " << theta[k].name << ": true " << truth[k].value << ", initial " << initial[k].value
-                  << ", learned " << theta[k].value << " (error " << errors[theta[k].name].get<double>() << ")\n";
-    if (final_eval.failed > 0) std::cout << final_eval.failed << " failed transitions (" << final_eval.first_failure << ")\n";
+    BriefReport r;
+    add_training_status(r, j, failed);
+    if (final_eval.failed > 0) r.add("first failure", final_eval.first_failure);
+    std::string method = o.method + " loss";
+    if (j.contains("softening")) method += " (softening " + j["softening"].get<std::string>() + ")";
+    if (o.portfolio) method += ", recipe " + j["chosen_recipe"].get<std::string>() + " of the portfolio";
+    r.add("method", method);
+    r.add("scene", std::to_string(data.scene.world.bodies.size()) + " bodies, " + (o.scene.empty() ? "generated pile" : o.scene));
+    r.add("transitions", std::to_string(data.transitions.size()) + " (" + std::to_string(training.size()) + " training, " +
+                             std::to_string(validation.size()) + " validation; " + std::to_string(final_eval.failed) + " failed)");
+    add_parameter_lines(r, j, parameter_unit);
+    r.add("largest error", worst, "(relative, over the learned parameters)", 3);
+    r.add("final loss", final_eval.loss, "(mean over the training transitions)");
+    add_training_effort(r, j, o.epochs);
+    if (!o.plot.empty()) r.add("plot", o.plot);
+    r.print();
   }
-  return final_eval.failed * 20 > static_cast<int>(training.size()) ? kExitSolveFailed : kExitSuccess;
+  return failed ? kExitSolveFailed : kExitSuccess;
 }
 
 Command add_learn_scene_command(CLI::App& learn) {
   auto o = std::make_shared<LearnSceneOptions>();
-  CLI::App* app = learn.add_subcommand("scene", "learn contact parameters of a multi-body scene from its transitions");
-  app->add_option("--scene", o->scene, "scene JSON (default: a generated learning pile)");
+  CLI::App* app = learn.add_subcommand("scene", "learn friction, masses, inertias and shapes of the bodies of a scene from its motion");
+  app->add_option("--scene", o->scene, "the scene file (JSON, docs/formats.md); default: a generated pile of --bodies polygons");
   app->add_option("--phase1-regularization", o->phase1_regularization,
-                  "convex: r of phase 1's (r/2) sum Wnn_ii lambda_i^2 (0: the simulator's model exactly)")
+                  "convex: weight of a small penalty on the normal impulses in the loss's first (frictionless) "
+                  "solve; 0 reproduces the simulator's model exactly")
       ->capture_default_str();
-  app->add_option("--deviation", o->deviation, "convex: weight w of the L2 deviation penalty in both phases")
+  app->add_option("--deviation", o->deviation, "convex: weight of the penalty on the deviation of the predicted velocities from the recorded ones")
       ->capture_default_str();
   app->add_option("--phase1-deviation", o->phase1_deviation,
-                  "convex: put the deviation penalty in phase 1 too (biased on the model's own data)")
+                  "convex: apply that penalty in the first (frictionless) solve too (smoother, but biased)")
       ->capture_default_str();
-  app->add_option("--beta2", o->beta2, "adam: decay of the squared-gradient average, in [0, 1)")->capture_default_str();
+  app->add_option("--beta2", o->beta2, "adam: decay rate of its running average of squared gradients, in [0, 1)")->capture_default_str();
   app->add_option("--proximal-iterations", o->proximal_iterations,
-                  "relaxed: QP solves per evaluation, each re-centring the convexity shift at the last solution")
+                  "relaxed: solves per transition and evaluation; more solves reduce the bias of the term that makes "
+                  "the relaxed problem convex")
       ->capture_default_str();
   app->add_option("--complementarity-weight", o->complementarity_weight,
-                  "relaxed: weight a2 of the complementarity term z'w (1/kg with --mass-normalized)")
+                  "relaxed: weight of the complementarity violation (impulses times separating velocities; 1/kg "
+                  "with --mass-normalized true)")
       ->capture_default_str();
   app->add_option("--mass-normalized", o->mass_normalized,
-                  "relaxed: divide the complementarity weight a2 by each island's mean body mass (the loss "
-                  "is then invariant under a common scaling of all masses)")
+                  "relaxed: divide that weight by the mean mass of each group of touching bodies (then scaling all masses alike changes nothing)")
       ->capture_default_str();
-  app->add_option("--bodies", o->bodies, "bodies of the generated learning pile")->capture_default_str();
-  app->add_option("--classes", o->classes, "shape classes of the generated pile (1..4)")->capture_default_str();
-  app->add_option("--data", o->data, "trajectory CSV of the scene (default: generate)");
-  app->add_option("--steps", o->steps, "simulated steps when generating")->capture_default_str();
-  app->add_option("--data-model", o->data_model,
-                  "contact model that generates the learning pile's data: lcp or convex (default: convex for "
-                  "--method convex, else lcp)")
+  app->add_option("--bodies", o->bodies, "bodies of the generated pile (without --scene)")->capture_default_str();
+  app->add_option("--classes", o->classes, "number of different polygon shapes in the generated pile (1 to 4)")->capture_default_str();
+  app->add_option("--data", o->data, "recorded trajectory of the --scene (CSV, docs/formats.md); default: simulate one");
+  app->add_option("--steps", o->steps, "time steps simulated to generate the data")->capture_default_str();
+  app->add_option("--data-model", o->data_model, "contact model of the generated pile: lcp or convex (default: convex with --method convex, else lcp)")
       ->check(CLI::IsMember({"lcp", "convex"}));
-  app->add_option("--method", o->method, "hard, relaxed or convex")->capture_default_str();
+  app->add_option("--method", o->method,
+                  "loss: hard (error of the exact model's prediction), relaxed (relaxed complementarity problem; "
+                  "default) or convex (error of the convex model's prediction)")->capture_default_str();
   app->add_option("--softening", o->softening,
-                  "convex: normal softening of the loss and the generated data: exp (exp(phi)), impedance (MuJoCo) "
-                  "or penalty (default: the scene's)")
+                  "convex: how contacts are softened in the loss and the generated data: exp, impedance (MuJoCo's) "
+                  "or penalty (a spring); default: the scene's")
       ->check(CLI::IsMember({"exp", "impedance", "penalty"}));
-  app->add_option("--learn", o->learn, "parameter kinds: mu,mass,inertia,vertices,ground,gap,residual")->capture_default_str();
-  app->add_option("--epochs", o->epochs, "most training epochs (0: evaluate only)")->capture_default_str();
+  app->add_option("--learn", o->learn, "what is learned, a comma-separated list of mu, mass, inertia, vertices, ground (the static "
+                  "shapes), gap (a contact distance offset per shape) and residual (a linear velocity correction "
+                  "per shape)")->capture_default_str();
+  app->add_option("--epochs", o->epochs, "most training epochs (passes over the data); 0: only evaluate")->capture_default_str();
   add_learn_stop_options(*app, o->stop);
-  app->add_option("--batch", o->batch, "mini-batch size (0: all training transitions)")->capture_default_str();
-  app->add_option("--threads", o->threads, "OpenMP threads (0: default)")->capture_default_str();
-  app->add_option("--seed", o->seed, "seed of scene, data, initial values and shuffle")->capture_default_str();
-  app->add_option("--noise", o->noise, "Gaussian noise sigma on recorded q and v (SI units)")->capture_default_str();
-  app->add_option("--perturb", o->perturb, "relative perturbation of the initial values")->capture_default_str();
+  app->add_option("--batch", o->batch, "transitions per optimizer step (0: all training transitions)")->capture_default_str();
+  add_threads_option(*app, o->threads, "transitions");
+  app->add_option("--seed", o->seed, "random seed of the generated pile, the data, the initial values and the sample order")->capture_default_str();
+  app->add_option("--noise", o->noise, "Gaussian noise added to the recorded positions and velocities (SI units)")->capture_default_str();
+  app->add_option("--perturb", o->perturb, "how far the initial values start from the truth: mu, masses and inertias times 1 +/- F, vertices "
+                  "by F/2 of their shape's radius")->capture_default_str();
   app->add_option("--init-from", o->init_from,
-                  "values from the \"learned\" map of an earlier run's --json result: the initial values of the learned parameters (replacing --perturb's), the fixed values of the others");
-  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (L-BFGS with a line search; full batch only) or lm (Levenberg-Marquardt on the convex loss's residuals; learn scene, full batch only)")->capture_default_str();
+                  "start from the \"learned\" values of an earlier run's --json output (instead of --perturb); "
+                  "values of parameters this run does not learn are held there");
+  app->add_option("--optimizer", o->optimizer, "sgd, adam, lbfgs (quasi-Newton with a line search; needs --batch 0) or lm "
+                  "(Levenberg-Marquardt; needs --method convex and --batch 0)")->capture_default_str();
   app->add_flag("--portfolio", o->portfolio,
-               "train several recipes from the same initial values, the --optimizer alone, adam (--lr, --lr-decay) then "
-               "the --optimizer, and (convex) the --optimizer on the default convex loss then on this one; keep the "
-               "lowest training loss (JSON: portfolio, chosen_recipe)");
-  app->add_option("--portfolio-adam-epochs", o->portfolio_adam_epochs, "--portfolio: epochs of its adam stage")
+               "train several recipes from the same start (the --optimizer alone; adam, then the --optimizer; "
+               "with --method convex, the --optimizer on a smoother loss first) and keep the one with the lowest "
+               "training loss");
+  app->add_option("--portfolio-adam-epochs", o->portfolio_adam_epochs, "--portfolio: epochs of adam before the --optimizer")
       ->capture_default_str();
   app->add_option("--portfolio-smooth-epochs", o->portfolio_smooth_epochs,
-                  "--portfolio, --method convex: epochs of the continuation's first stage, on the default convex loss")
+                  "--portfolio with --method convex: epochs on the smoother loss first")
       ->capture_default_str();
   app->add_flag("--lm-geodesic", o->lm_geodesic,
-               "lm: add the geodesic acceleration to each step (Transtrum & Sethna 2012; one more residual and Jacobian pass per trial)");
+               "lm: add a second-order correction to each step (geodesic acceleration, Transtrum & Sethna 2012; "
+               "costs one more pass over the data per trial step)");
   app->add_option("--prior-weight", o->prior_weight,
-                  "w of a Gaussian prior w*|xi - xi0|^2 on the free parameters, centred on the initial values (0: none); biased by O(w): continue with --init-from and no prior")
+                  "weight w of a penalty w*|p - p0|^2 that keeps the parameters p (log scale for positive ones) near "
+                  "their initial values p0 (0: none); it biases the result, so continue with --init-from and no "
+                  "prior")
       ->capture_default_str();
   app->add_option("--robust-scale", o->robust_scale,
-                  "c of the Cauchy robust loss c*log(1 + l/c) applied to each transition's loss l, in l's units (0: plain mean)")
+                  "scale c of a robust loss c*log(1 + l/c) applied to each transition's loss l, which limits the pull "
+                  "of a few bad transitions (0: the plain mean)")
       ->capture_default_str();
-  app->add_option("--lr", o->lr, "learning rate (on log mu/mass/inertia; lengths in units of their class radius; radians)")->capture_default_str();
+  app->add_option("--lr", o->lr, "learning rate (steps on log mu, log mass, log inertia; lengths in units of their shape's radius; "
+                  "radians)")->capture_default_str();
   app->add_option("--lr-decay", o->lr_decay, "learning-rate schedule lr/(1 + d*step)")->capture_default_str();
-  app->add_option("--log", o->log, "CSV log of every epoch");
-  app->add_option("--plot", o->plot, "relative error of each parameter against wall time (OUT.png|svg)");
+  app->add_option("--log", o->log, "write one CSV line per epoch (loss, gradient norm, parameters) to this file");
+  app->add_option("--plot", o->plot, "plot each parameter's relative error against wall time (OUT.png or OUT.svg)");
   add_learn_checkpoint_options(*app, o->checkpoint);
   add_json_flag(*app, o->json);
+  app->footer(exit_codes_help("trained (or evaluated, with --epochs 0)",
+                              "more than 5% of the training transitions failed to solve at the learned parameters"));
   return Command{app, [o, app]() { return run_learn_scene(*o, *app); }};
 }
 

@@ -1,8 +1,16 @@
 // `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex]
-//  [--softening exp|impedance|penalty] [--threads T] [--picture OUT.svg|OUT.png]
-//  [--frames DIR] [--scene FILE.json] [--export-fc2d FILE] [--json]` (docs/cli.md): random
-// convex polygons dropped into a container (or a scene file), simulated with
-// models/simulator.hpp.
+//  [--softening exp|impedance|penalty] [--dt S] [--gravity G] [--qp-eps E] [--lemke-tol E]
+//  [--threads T] [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json]
+//  [--export-fc2d FILE] [--json]` (docs/cli.md): random convex polygons dropped into a
+// container (or a scene file), simulated with models/simulator.hpp.
+// Units: --dt in s; --gravity in m/s², the magnitude of gravity: a random pile's points
+// along −y, a scene's keeps the file's direction (−y when the file's gravity is zero);
+// --qp-eps is the interior point's absolute tolerance (convex model and the fallbacks),
+// --lemke-tol Lemke's accepted complementarity residual max|min(z, w)| (lcp model and the
+// position projection; 0: 1e-9·‖q‖∞). Each is bad input (exit 2, naming the flag) unless
+// finite and in range (dt > 0, gravity ≥ 0 and ≤ 1e15, qp-eps > 0, lemke-tol ≥ 0).
+// Human output: a brief report (cli_report.hpp) of the JSON fields plus the scene's name,
+// time step and gravity.
 // JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
 // (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
 // potential energy divided by the initial total), plus model, softening (convex model only),
@@ -14,6 +22,7 @@
 // model) is an error with the lcp model. Output paths are checked before the first step;
 // progress goes to stderr (a status line on a terminal, else a line every 10 s).
 #include "cli_common.hpp"
+#include "cli_report.hpp"
 
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/io/siconos_writer.hpp>
@@ -28,6 +37,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -45,6 +55,9 @@ struct PileCliOptions {
   std::uint64_t seed = 1;
   std::string picture, frames, scene, export_fc2d, color = "contacts";
   int frame_every = 5;
+  double dt = 0.0, gravity = 0.0;  // used only when --dt / --gravity are given
+  double qp_eps = SimulatorSettings{}.qp.eps_abs;
+  double lemke_tol = SimulatorSettings{}.lemke.residual_tolerance;
   bool draw_contacts = false;
   bool json = false;
 };
@@ -68,12 +81,68 @@ void check_outputs(const PileCliOptions& o) {
   require_writable_file("--export-fc2d", o.export_fc2d);
 }
 
+// --dt and --gravity onto the scene (a random pile's or the file's), --qp-eps and
+// --lemke-tol onto the solver settings; each flag validated first (exit 2 naming it).
+void apply_physics_options(const PileCliOptions& o, const CLI::App& app, Scene& scene, SimulatorSettings& settings) {
+  const auto shown = [](double v) {  // the value as typed, also when it is nan or inf
+    return std::isnan(v) ? std::string("nan") : std::isinf(v) ? std::string(v > 0 ? "inf" : "-inf") : format_number(v, 17);
+  };
+  if (app.count("--dt")) {
+    require_option(std::isfinite(o.dt) && o.dt > 0.0, "--dt",
+                   "the time step must be a positive finite number of seconds, got " + shown(o.dt));
+    scene.settings.dt = o.dt;
+  }
+  if (app.count("--gravity")) {
+    require_option(std::isfinite(o.gravity) && o.gravity >= 0.0 && o.gravity <= kMaxSceneMagnitude, "--gravity",
+                   "the magnitude of gravity must be a finite number of m/s² in [0, 1e15], got " + shown(o.gravity));
+    const Vec2 g = scene.world.gravity;
+    const Vec2 down = g.norm() > 0.0 ? Vec2(g / g.norm()) : Vec2(0.0, -1.0);
+    scene.world.gravity = o.gravity * down;
+  }
+  require_option(std::isfinite(o.qp_eps) && o.qp_eps > 0.0, "--qp-eps",
+                 "must be a positive finite number, got " + shown(o.qp_eps));
+  require_option(std::isfinite(o.lemke_tol) && o.lemke_tol >= 0.0, "--lemke-tol",
+                 "must be a finite number >= 0 (0: 1e-9 times the largest |q|), got " + shown(o.lemke_tol));
+  settings.qp.eps_abs = o.qp_eps;
+  settings.lemke.residual_tolerance = o.lemke_tol;
+}
+
 // Progress on stderr every kProgressSeconds whatever the terminal (a long run, such as a
 // 10⁶-body scene, says how far it is; also under --json: stdout keeps its one object).
 constexpr double kProgressSeconds = 10.0;
 
+// The brief report (cli_report.hpp): status first (ok, or failed islands), the run's
+// settings, then the JSON fields in words with their units.
+void print_report(const Json& j, const Simulator& sim, const std::string& scene_name, const std::string& first_failure) {
+  const long failed = j["failed_islands"].get<long>();
+  const auto number = [&j](const char* key) { return j[key].is_number() ? j[key].get<double>() : std::nan(""); };
+  BriefReport r;
+  r.add("status", failed == 0 ? "ok" : "failed islands");
+  if (failed > 0) r.add("first failure", first_failure);
+  if (!scene_name.empty()) r.add("scene", scene_name);
+  std::string model = j["model"].get<std::string>();
+  if (j.contains("softening")) model += " (softening " + j["softening"].get<std::string>() + ")";
+  r.add("model", model);
+  r.add_count("bodies", j["bodies"].get<long long>());
+  r.add_count("steps", j["steps"].get<long long>());
+  r.add("time step", sim.settings().dt, "s");
+  const Vec2 g = sim.world().gravity;
+  r.add("gravity", "(" + format_number(g.x()) + ", " + format_number(g.y()) + ")", "m/s²");
+  r.add_count("contacts (max)", j["contacts_max"].get<long long>(), "in one step");
+  r.add("max penetration", number("max_penetration"), "m", 3);
+  r.add("max residual", number("max_residual"), "(largest contact-solve residual)", 3);
+  r.add("max energy gain", number("max_energy_gain"), "× the initial energy, in one step (< 0: always lost)", 3);
+  r.add_count("failed islands", failed, failed > 0 ? "(solved by a fallback instead)" : "");
+  const long long inaccurate = j["inaccurate_islands"].get<long long>();
+  r.add_count("inaccurate islands", inaccurate, inaccurate > 0 ? "(outside the tolerance, kept)" : "");
+  r.add("time", number("seconds"), "s (" + format_number(number("seconds_per_step"), 3) + " s per step)", 3);
+  if (j.contains("picture")) r.add("picture", j["picture"].get<std::string>());
+  r.print();
+}
+
 int run_pile(const PileCliOptions& o, const CLI::App& app) {
   const Stopwatch setup_watch;
+  require_threads(o.threads);
   check_outputs(o);
   Scene scene;
   if (!o.scene.empty()) {
@@ -96,11 +165,13 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
                    "applies to the convex model only (this run's model is lcp)");
     scene.settings.convex_softening.method = parse_normal_softening(o.softening);
   }
+  SimulatorSettings settings;
+  settings.threads = o.threads;
+  apply_physics_options(o, app, scene, settings);
   const int steps = scene.steps;
   const std::string model = to_string(scene.settings.model);
   const std::string softening = to_string(scene.settings.convex_softening.method);
-  SimulatorSettings settings;
-  settings.threads = o.threads;
+  const std::string scene_name = scene.name;
   Simulator sim = [&] {
     try {
       return make_simulator(std::move(scene), settings);
@@ -171,12 +242,8 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   j["inaccurate_islands"] = inaccurate;
   j["seconds"] = seconds;
   if (!o.picture.empty()) j["picture"] = o.picture;
-  if (o.json) {
-    print_json(j);
-  } else {
-    for (const auto& [key, value] : j.items()) std::cout << key << ": " << value.dump() << '\n';
-    if (failed) std::cout << "first failure: " << first_failure << '\n';
-  }
+  if (o.json) print_json(j);
+  else print_report(j, sim, scene_name.empty() ? o.scene : scene_name, first_failure);
   return failed == 0 ? kExitSuccess : kExitSolveFailed;
 }
 
@@ -184,27 +251,49 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
 
 Command add_pile_command(CLI::App& parent) {
   auto o = std::make_shared<PileCliOptions>();
-  CLI::App* app = parent.add_subcommand("pile", "Drop random convex polygons into a container and simulate");
-  app->add_option("--bodies", o->bodies, "Number of polygons")->check(CLI::Range(1, 1000000))->capture_default_str();
-  app->add_option("--steps", o->steps, "Time steps")->check(CLI::Range(0, 100000000))->capture_default_str();
-  app->add_option("--model", o->model, "Contact model: convex (interior point, default) or lcp (Lemke)")
+  CLI::App* app = parent.add_subcommand(
+      "pile", "Drop random convex polygons into a box (or load a scene file) and simulate them, with friction");
+  app->add_option("--bodies", o->bodies, "number of random polygons")->check(CLI::Range(1, 1000000))->capture_default_str();
+  app->add_option("--steps", o->steps, "time steps to simulate (a scene file's \"steps\" unless given)")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  app->add_option("--model", o->model,
+                  "contact model: convex (a convex optimization per step, slightly soft contacts; default) or lcp "
+                  "(the exact complementarity problem, solved by pivoting)")
       ->check(CLI::IsMember({"lcp", "convex"}))
       ->capture_default_str();
   app->add_option("--softening", o->softening,
-                  "convex model's normal softening: exp (exp(phi), default), impedance (MuJoCo) or penalty")
+                  "convex model: how contacts are softened: exp (default), impedance (MuJoCo's) or penalty (a spring)")
       ->check(CLI::IsMember({"exp", "impedance", "penalty"}));
-  app->add_option("--threads", o->threads, "OpenMP threads over islands (0: default)")->check(CLI::Range(0, 1024));
-  app->add_option("--seed", o->seed, "Random seed of the pile")->capture_default_str();
-  app->add_option("--scene", o->scene, "Simulate this scene JSON file instead of a random pile");
-  app->add_option("--picture", o->picture, "Write the final state to OUT.svg or OUT.png");
-  app->add_option("--frames", o->frames, "Write numbered PNG frames into this directory");
-  app->add_option("--frame-every", o->frame_every, "Steps between frames")->check(CLI::Range(1, 1000000));
-  app->add_option("--color", o->color, "Color bodies by contacts or speed")
+  app->add_option("--dt", o->dt, "time step in seconds, > 0 (default 0.01, or the scene file's \"dt\")");
+  app->add_option("--gravity", o->gravity,
+                  "magnitude of gravity in m/s², >= 0 (default 9.81, pointing down (-y); with --scene the file's "
+                  "direction is kept)");
+  app->add_option("--qp-eps", o->qp_eps,
+                  "convex model: accuracy of each step's solve (largest residual accepted, absolute)")
+      ->capture_default_str();
+  app->add_option("--lemke-tol", o->lemke_tol,
+                  "lcp model: largest complementarity residual accepted per step (0: 1e-9 times the problem's "
+                  "largest |q|)")
+      ->capture_default_str();
+  add_threads_option(*app, o->threads, "the groups of touching bodies (islands)");
+  app->add_option("--seed", o->seed, "random seed of the polygons' shapes, positions and velocities")->capture_default_str();
+  app->add_option("--scene", o->scene, "simulate this scene JSON file (docs/formats.md) instead of a random pile");
+  app->add_option("--picture", o->picture, "draw the final state to OUT.svg or OUT.png");
+  app->add_option("--frames", o->frames, "write numbered PNG frames into this directory");
+  app->add_option("--frame-every", o->frame_every, "steps between two frames")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  app->add_option("--color", o->color, "color the bodies by their number of contacts or by their speed")
       ->check(CLI::IsMember({"contacts", "speed"}))
       ->capture_default_str();
-  app->add_flag("--draw-contacts", o->draw_contacts, "Draw contact points and normals");
-  app->add_option("--export-fc2d", o->export_fc2d, "Write the last step's contact problem as a Siconos fc2d file");
+  app->add_flag("--draw-contacts", o->draw_contacts, "draw contact points and normals");
+  app->add_option("--export-fc2d", o->export_fc2d,
+                  "write the last step's contact problem as a Siconos 2-D frictional contact file");
   add_json_flag(*app, o->json);
+  app->footer(exit_codes_help("every step's contact problems were solved",
+                              "some island's contact solve failed (it was then solved by the other model or "
+                              "without friction; see \"first failure\")"));
   return Command{app, [o, app] { return run_pile(*o, *app); }};
 }
 

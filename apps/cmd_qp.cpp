@@ -1,19 +1,21 @@
 // `lcprelax qp FILE.qps [--eps E] [--max-iter N] [--time-limit S] [--verbose] [--solution OUT.json] [--json]`
 // (docs/cli.md): reads a QPS file, solves it with the interior-point QP and reports status,
-// objective, iterations, residuals, duality gap, the setup + solve wall time and, unless
-// solved, the solver's message. A P that is not positive semidefinite is bad input (exit 2).
+// objective, iterations, residuals, duality gap, the setup + solve wall time (s) and, unless
+// solved, the solver's message: a brief report (cli_report.hpp) or, with --json, one JSON
+// object whose fields docs/cli.md lists. A P that is not positive semidefinite is bad input (exit 2).
 // With --solution (only with a solution: solved or solved_inaccurate), OUT.json holds `x`,
 // `y_rows` (one multiplier per constraint row of the file, QpResult::z, since the reader
 // puts every row in G) and `y_bounds` (QpResult::z_bounds), signed as in
 // docs/conventions.md (Px + q + Cᵀy_rows + y_bounds = 0).
 #include "cli_common.hpp"
+#include "cli_report.hpp"
 
 #include <lcprelax/io/qps_reader.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
+#include <lcprelax/sparse/dense_ldlt.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <cmath>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 
@@ -72,19 +74,24 @@ Json solution_json(const QpResult& result) {
   return j;
 }
 
+// The brief report (cli_report.hpp): status first, then the problem and the solve.
 void print_report(const io::QpsModel& model, const QpInfo& info, double seconds) {
   const QpProblem& p = model.problem;
-  std::ostream& out = std::cout;
-  out << "problem     " << (model.name.empty() ? "(unnamed)" : model.name) << ": " << p.num_variables()
-      << " variables, " << p.num_inequalities() << " rows, nnz(P) = " << p.P.nonZeros()
-      << ", nnz(G) = " << p.G.nonZeros() << '\n';
-  out << "status      " << to_string(info.status) << '\n';
-  if (info.status != QpStatus::solved && !info.message.empty()) out << "message     " << info.message << '\n';
-  out << "objective   " << std::setprecision(12) << info.objective << '\n';
-  out << "iterations  " << info.iterations << '\n';
-  out << std::setprecision(3) << "residuals   primal " << info.primal_residual << ", dual " << info.dual_residual
-      << ", gap " << info.duality_gap << '\n';
-  out << "seconds     " << seconds << " (setup + solve)\n";
+  BriefReport r;
+  r.add("status", to_string(info.status));
+  if (info.status != QpStatus::solved && !info.message.empty()) r.add("message", info.message);
+  r.add("problem", model.name.empty() ? std::string("(unnamed)") : model.name);
+  r.add("size", std::to_string(p.num_variables()) + " variables, " + std::to_string(p.num_inequalities()) +
+                    " constraint rows");
+  r.add("nonzeros", std::to_string(p.P.nonZeros()) + " in P (upper triangle), " + std::to_string(p.G.nonZeros()) +
+                        " in the constraint rows");
+  r.add("objective", info.objective, "", 12);
+  r.add_count("iterations", info.iterations);
+  r.add("primal residual", info.primal_residual, "", 3);
+  r.add("dual residual", info.dual_residual, "", 3);
+  r.add("duality gap", info.duality_gap, "", 3);
+  r.add("time", seconds, "s (setup + solve)", 3);
+  r.print();
 }
 
 int run_qp(const QpOptions& o) {
@@ -115,19 +122,29 @@ int run_qp(const QpOptions& o) {
 
 Command add_qp_command(CLI::App& parent) {
   auto options = std::make_shared<QpOptions>();
-  CLI::App* qp = parent.add_subcommand("qp", "Solve a convex QP given as a QPS file (Maros–Meszaros format)");
-  qp->add_option("file", options->file, "QPS file")->required();
-  qp->add_option("--eps", options->eps, "Absolute tolerance on residuals and duality gap (QpSettings::eps_abs)")
+  CLI::App* qp = parent.add_subcommand(
+      "qp", "Solve a convex quadratic program read from a QPS file (the Maros–Meszaros format)");
+  qp->add_option("file", options->file, "QPS file (free MPS with a QUADOBJ or QMATRIX section; docs/formats.md)")
+      ->required();
+  qp->add_option("--eps", options->eps,
+                 "stop when the primal residual, the dual residual and the duality gap are all at most this "
+                 "(absolute, unscaled)")
       ->capture_default_str();
-  qp->add_option("--max-iter", options->max_iter, "Interior-point iteration limit")->capture_default_str();
-  qp->add_option("--solution", options->solution, "Write x, y_rows and y_bounds to this JSON file");
+  qp->add_option("--max-iter", options->max_iter, "most interior-point iterations")->capture_default_str();
+  qp->add_option("--solution", options->solution,
+                 "write the solution (x, y_rows, y_bounds) to this JSON file when solved or solved_inaccurate");
   qp->add_option("--kkt-backend", options->kkt_backend,
-                 "KKT factorization: automatic (dense up to QpSettings::dense_max_kkt rows, else cholmod), "
-                 "cholmod, dense, mumps (PETSc, this process) or mumps-distributed (over the MPI ranks of mpiexec)")
+                 "how the linear systems are factorized: automatic (dense for small problems, at most " +
+                     std::to_string(QpSettings{}.dense_max_kkt) +
+                     " rows, else cholmod), cholmod (sparse), dense (at most " +
+                     std::to_string(sparse::DenseLdlt::kMaxDimension) + " rows), mumps (needs PETSc) or "
+                     "mumps-distributed (over the processes of mpiexec)")
       ->capture_default_str();
-  qp->add_option("--time-limit", options->time_limit, "Seconds of the solve (QpSettings::time_limit; default none)");
-  qp->add_flag("--verbose", options->verbose, "One line per interior-point iteration on stderr");
+  qp->add_option("--time-limit", options->time_limit, "stop the solve after this many seconds (default: no limit)");
+  qp->add_flag("--verbose", options->verbose, "print one line per interior-point iteration on stderr");
   add_json_flag(*qp, options->json);
+  qp->footer(exit_codes_help("solved (status solved)", "not solved to --eps (status max_iterations, primal_infeasible, dual_infeasible, "
+                             "time_limit, numerical_error or solved_inaccurate; message says why)"));
   return Command{qp, [options] { return run_qp(*options); }};
 }
 

@@ -75,8 +75,14 @@ int main(int argc, char** argv) {
     mpi = std::make_unique<lcprelax::mpi::MpiSession>(&argc, &argv);
     if (lcprelax::mpi::mpi_rank() != 0 && !std::freopen("/dev/null", "w", stdout)) return kExitBadInput;
   }
-  CLI::App app{"lcprelax: sparse QP / LCP solvers for many-contact systems"};
+  CLI::App app{
+      "lcprelax: solvers for convex QPs and contact problems (LCP, 2-D friction), a simulator of\n"
+      "piles of polygons, and learning of contact parameters from motion data.\n"
+      "Run 'lcprelax SUBCOMMAND --help' for a subcommand's options; docs/cli.md describes every\n"
+      "output field, docs/formats.md every file format."};
   app.require_subcommand(1);
+  app.footer(exit_codes_help() +
+             "\nEvery subcommand prints a short report, or with --json exactly one JSON object on stdout.\n");
   const std::vector<Command> commands = {
       add_qp_command(app),
       add_lcp_command(app),

@@ -14,6 +14,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lcprelax::testing_support {
@@ -73,6 +74,28 @@ inline pid_t spawn_cli(const std::string& args) {
     ::_exit(127);
   }
   return pid;
+}
+
+/// The lines of a brief report (the human output of every subcommand, apps/cli_report.hpp:
+/// `name  value unit`, names padded to one column): name → "value unit". Empty when a line
+/// does not have that form (a name, then two or more spaces, then the value).
+inline std::vector<std::pair<std::string, std::string>> report_lines(const std::string& out) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t gap = line.find("  ");
+    const std::size_t value = gap == std::string::npos ? gap : line.find_first_not_of(' ', gap);
+    if (gap == 0 || value == std::string::npos) return {};
+    lines.emplace_back(line.substr(0, gap), line.substr(value));
+  }
+  return lines;
+}
+
+/// The "value unit" of the report line `name`, or "(no line NAME)".
+inline std::string report_value(const std::string& out, const std::string& name) {
+  for (const auto& [n, v] : report_lines(out))
+    if (n == name) return v;
+  return "(no line " + name + ")";
 }
 
 /// Whether `out` is exactly the one JSON object of bad input under --json (docs/cli.md):
