@@ -2,6 +2,10 @@
 
 Batched, parallel versions (QpBatch, LemkeBatch, RelaxedLcpBatch) back the PyTorch layers
 of ``lcprelax.torch`` (QpLayer, LcpLayer, RelaxedLcpLoss; imported separately, it needs torch).
+Simulation: :class:`Simulator` steps a scene (JSON file or text; ``pile_scene`` and friends
+generate one); SI units, poses (x, y, θ) per body. Learning: :class:`BlockObjective` and
+:class:`SceneObjective` give a loss and its gradient in the learned parameters
+(``evaluate(theta) -> (loss, gradient)``).
 
 The solvers and readers are implemented in C++ (the compiled module ``lcprelax._lcprelax``);
 this package re-exports them. Conventions (docs/python.md, docs/conventions.md):
@@ -26,6 +30,16 @@ Example::
     g = s.backward(np.ones(2))   # g.dq, g.dP, g.dxl, ...
 """
 from ._lcprelax import (  # noqa: F401
+    BlockObjective,
+    Objective,
+    SceneObjective,
+    Simulator,
+    StepStats,
+    box_stack_scene,
+    generate_block_data,
+    incline_scene,
+    pile_scene,
+    pyramid_scene,
     InputError,
     LcpGradient,
     LcpResult,
@@ -69,4 +83,14 @@ __all__ = [
     "parse_siconos_lcp",
     "read_siconos_fc2d",
     "parse_siconos_fc2d",
+    "Simulator",
+    "StepStats",
+    "pile_scene",
+    "box_stack_scene",
+    "pyramid_scene",
+    "incline_scene",
+    "Objective",
+    "BlockObjective",
+    "SceneObjective",
+    "generate_block_data",
 ]

@@ -39,6 +39,10 @@ void bind_io(py::module_& m);
 void bind_qp_batch(py::module_& m);
 void bind_lcp_batch(py::module_& m);
 void bind_relaxed_lcp(py::module_& m);
+void bind_simulator(py::module_& m);
+void bind_scenes(py::module_& m);
+void bind_learning(py::module_& m);
+void bind_scene_learning(py::module_& m);
 
 /// Takes a solver for one call or fails: a solver busy in another thread is a UsageError
 /// (std::logic_error "<solver> is in use by another thread").

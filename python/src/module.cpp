@@ -2,6 +2,8 @@
 // Each concept is bound in its own file: errors.cpp (exception mapping), qp.cpp (QpSolver),
 // lcp.cpp (LemkeSolver), io.cpp (QPS and Siconos readers), qp_batch.cpp,
 // lcp_batch.cpp, relaxed_lcp.cpp (batched solves in parallel, the engines of lcprelax.torch);
+// simulator.cpp, scenes.cpp (Simulator, scene generators), objective.cpp, learning.cpp,
+// scene_learning.cpp (learning losses with gradients);
 // convert.cpp and batch.cpp hold the NumPy / scipy.sparse conversions they share. Conventions: docs/python.md.
 #include "bindings.hpp"
 
@@ -17,4 +19,8 @@ PYBIND11_MODULE(_lcprelax, m) {
   lcprelax::python::bind_qp_batch(m);
   lcprelax::python::bind_lcp_batch(m);
   lcprelax::python::bind_relaxed_lcp(m);
+  lcprelax::python::bind_simulator(m);
+  lcprelax::python::bind_scenes(m);
+  lcprelax::python::bind_learning(m);
+  lcprelax::python::bind_scene_learning(m);
 }

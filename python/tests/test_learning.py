@@ -1,0 +1,174 @@
+"""Learning losses with gradients: lcprelax.BlockObjective (learn/block_losses.hpp) and
+lcprelax.SceneObjective (learn/scene_objective.hpp). Gradients are checked against central
+differences of the loss at points where it is smooth (no sample at its stick/slip boundary)."""
+import numpy as np
+import pytest
+
+import lcprelax
+
+
+@pytest.fixture(scope="module")
+def block_data():
+    return lcprelax.generate_block_data(0.1, samples=100, seed=2)
+
+
+def central_difference(objective, theta, rel=1e-6):
+    g = np.zeros(len(theta))
+    for i in range(len(theta)):
+        h = rel * abs(theta[i])
+        e = np.zeros(len(theta))
+        e[i] = h
+        g[i] = (objective.evaluate(theta + e)[0] - objective.evaluate(theta - e)[0]) / (2 * h)
+    return g
+
+
+def test_generated_block_data_follow_the_model(block_data):
+    v, u, vn = block_data["v"], block_data["u"], block_data["v_next"]
+    assert v.shape == u.shape == vn.shape == (100,)
+    assert block_data["mass"] == 1.0 and block_data["mg"] == 1.0
+    vstar = v + u  # m = 1
+    s = 0.1  # μ mg / m
+    expected = np.where(np.abs(vstar) <= s, 0.0, vstar - np.sign(vstar) * s)
+    np.testing.assert_allclose(vn, expected, atol=1e-12)
+    assert np.sum(np.abs(vstar) <= s) == 50  # half stick
+
+
+@pytest.mark.parametrize("method", ["hard", "relaxed", "convex"])
+def test_block_gradient_matches_central_differences(block_data, method):
+    o = lcprelax.BlockObjective(method, **block_data, qp=dict(eps_abs=1e-12), threads=2)
+    assert o.parameter_names == ["mu"] and o.method == method and o.num_samples == 100 == len(o)
+    for mu in [0.05, 0.2]:
+        loss, grad = o.evaluate([mu])
+        assert loss > 0 and grad.shape == (1,)
+        np.testing.assert_allclose(grad, central_difference(o, np.array([mu])), rtol=1e-5)
+        assert np.sign(grad[0]) == np.sign(mu - 0.1)  # towards the truth
+
+
+def test_block_hard_loss_is_exact_at_the_truth(block_data):
+    for method in ["hard", "convex"]:
+        loss, grad = lcprelax.BlockObjective(method, **block_data, qp=dict(eps_abs=1e-12)).evaluate([0.1])
+        assert loss < 1e-12 and abs(grad[0]) < 1e-5
+
+
+def test_block_hard_gradient_is_zero_where_everything_sticks(block_data):
+    # every sample sticks for μ > slip_max·μ_true = 0.9: the hard gradient is exactly 0
+    loss, grad = lcprelax.BlockObjective("hard", **block_data).evaluate([2.0])
+    assert loss > 0 and grad[0] == 0.0
+    _, grad_relaxed = lcprelax.BlockObjective("relaxed", **block_data).evaluate([2.0])
+    assert grad_relaxed[0] > 0
+
+
+def test_block_mass_and_mg_gradients(block_data):
+    o = lcprelax.BlockObjective("relaxed", **block_data, learn_mass=True, learn_mg=True, qp=dict(eps_abs=1e-12))
+    assert o.parameter_names == ["mu", "mass", "mg"]
+    theta = np.array([0.2, 1.3, 0.8])
+    _, grad = o.evaluate(theta)
+    np.testing.assert_allclose(grad, central_difference(o, theta), rtol=1e-5)
+    np.testing.assert_allclose(o.lower_bounds, 1e-8)
+
+
+def test_block_reductions_and_samples(block_data):
+    o = lcprelax.BlockObjective("relaxed", **block_data)
+    mean, gmean = o.evaluate([0.3])
+    total, gsum = o.evaluate([0.3], reduction="sum")
+    assert total == pytest.approx(100 * mean) and gsum == pytest.approx(100 * gmean)
+    parts = [o.evaluate([0.3], samples=[i], reduction="sum")[0] for i in range(100)]
+    assert sum(parts) == pytest.approx(total, rel=1e-10)
+    # one thread and two give the same bits (fixed-order sums)
+    one = lcprelax.BlockObjective("relaxed", **block_data, threads=1).evaluate([0.3])
+    assert one[0] == mean and np.array_equal(one[1], gmean)
+
+
+def test_relaxed_gradient_descent_finds_the_true_mu(block_data):
+    o = lcprelax.BlockObjective("relaxed", **block_data)
+    mu = 0.5  # 5x too high; every step in log μ
+    first, _ = o.evaluate([mu])
+    for _ in range(60):
+        loss, grad = o.evaluate([mu])
+        mu *= np.exp(-50.0 * mu * grad[0])
+    assert loss < first / 100
+    assert mu == pytest.approx(0.1, rel=0.01)
+
+
+def test_relaxed_settings_change_the_loss(block_data):
+    base, _ = lcprelax.BlockObjective("relaxed", **block_data).evaluate([0.3])
+    heavier, _ = lcprelax.BlockObjective("relaxed", **block_data, relaxed=dict(a1=2.0)).evaluate([0.3])
+    assert heavier != base
+
+
+def test_block_bad_input(block_data):
+    d = dict(block_data)
+    with pytest.raises(lcprelax.InputError, match="unknown method"):
+        lcprelax.BlockObjective("soft", **d)
+    with pytest.raises(lcprelax.InputError, match="u has length 3"):
+        lcprelax.BlockObjective("hard", d["v"], d["u"][:3], d["v_next"])
+    bad = d["v"].copy()
+    bad[4] = np.nan
+    with pytest.raises(lcprelax.InputError, match="sample 4"):
+        lcprelax.BlockObjective("hard", bad, d["u"], d["v_next"])
+    with pytest.raises(lcprelax.InputError, match="mass"):
+        lcprelax.BlockObjective("hard", d["v"], d["u"], d["v_next"], mass=0.0)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'b1'"):
+        lcprelax.BlockObjective("relaxed", **d, relaxed=dict(b1=1.0))
+    with pytest.raises(lcprelax.InputError, match="relaxed"):
+        lcprelax.BlockObjective("relaxed", **d, relaxed=dict(a1=-1.0))
+    with pytest.raises(TypeError):
+        lcprelax.BlockObjective("relaxed", **d, learn_rate=1)
+    o = lcprelax.BlockObjective("relaxed", **d)
+    with pytest.raises(lcprelax.InputError, match="theta has length 2"):
+        o.evaluate([0.1, 0.2])
+    with pytest.raises(lcprelax.InputError, match="mu"):
+        o.evaluate([-0.1])
+    with pytest.raises(lcprelax.InputError, match="mu"):
+        o.evaluate([np.nan])
+    with pytest.raises(lcprelax.InputError, match="samples"):
+        o.evaluate([0.1], samples=[100])
+    with pytest.raises(lcprelax.InputError, match="reduction"):
+        o.evaluate([0.1], reduction="max")
+    with pytest.raises(lcprelax.InputError, match="slip_max"):
+        lcprelax.generate_block_data(0.1, slip_max=0.5)
+
+
+@pytest.fixture(scope="module")
+def stack():
+    return lcprelax.box_stack_scene(boxes=2, size=0.1, mu=0.5)
+
+
+@pytest.mark.parametrize("method,kw", [("hard", {}), ("convex", {}), ("relaxed", dict(relaxed_warm_center=False))])
+def test_scene_gradient_matches_central_differences(stack, method, kw):
+    o = lcprelax.SceneObjective(stack, method=method, learn=["mu", "mass"], steps=30, **kw)
+    assert o.parameter_names == ["mu", "class0.mass"]
+    np.testing.assert_allclose(o.true_values, [0.5, 1000 * 0.1 * 0.1])
+    assert o.dataset["transitions"] == 30 == o.num_samples and o.dataset["bodies"] == 2
+    theta = o.perturbed_values(0.2)
+    assert np.all(theta != o.true_values)
+    loss, grad = o.evaluate(theta)
+    assert loss > 0
+    np.testing.assert_allclose(grad, central_difference(o, theta, rel=1e-5), rtol=1e-3)
+
+
+def test_scene_loss_is_smallest_at_the_truth(stack):
+    o = lcprelax.SceneObjective(stack, method="hard", learn="mu,mass", steps=30)
+    at_truth, _ = o.evaluate(o.true_values)
+    off, grad = o.evaluate(o.perturbed_values(0.2))
+    assert at_truth < 1e-10 < off
+    # a step against the gradient lowers the loss
+    theta = o.perturbed_values(0.2)
+    step = theta - 1e-2 * theta * np.sign(grad)
+    assert o.evaluate(step)[0] < off
+
+
+def test_scene_bad_input(stack):
+    with pytest.raises(lcprelax.InputError, match="learn"):
+        lcprelax.SceneObjective(stack, learn="mu,colour", steps=5)
+    with pytest.raises(lcprelax.InputError):
+        lcprelax.SceneObjective(stack, method="soft", steps=5)
+    with pytest.raises(lcprelax.InputError, match="steps"):
+        lcprelax.SceneObjective(stack, steps=0)
+    with pytest.raises(lcprelax.InputError, match="invalid JSON"):
+        lcprelax.SceneObjective("{oops", steps=5)
+    with pytest.raises(TypeError, match="learn"):
+        lcprelax.SceneObjective(stack, learn=3, steps=5)
+    o = lcprelax.SceneObjective(stack, learn="mu", steps=5)
+    with pytest.raises(lcprelax.InputError, match="theta has length 2"):
+        o.evaluate([0.5, 1.0])
