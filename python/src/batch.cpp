@@ -81,7 +81,8 @@ void for_each_sample(Index count, int threads, const std::function<void(Index)>&
     }
   };
 #ifdef LCPRELAX_HAS_OPENMP
-  const int nt = threads > 0 ? threads : omp_get_max_threads();
+  // No more threads than samples (waking an idle thread costs more than a small sample).
+  const int nt = static_cast<int>(std::min<Index>(threads > 0 ? threads : omp_get_max_threads(), std::max<Index>(count, 1)));
 #pragma omp parallel for num_threads(nt) schedule(static)
   for (Index k = 0; k < count; ++k) guarded(k);
 #else

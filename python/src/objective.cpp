@@ -23,7 +23,17 @@ const std::vector<SettingField<learn::RelaxedLcpSettings>>& relaxed_loss_fields(
                       [](S& s, py::handle v) {
                         s.max_dissipation = learn::parse_max_dissipation(setting_string(v, "max_dissipation"));
                       },
-                      [](const S& s) { return py::object(py::str(learn::to_string(s.max_dissipation))); }}};
+                      [](const S& s) { return py::object(py::str(learn::to_string(s.max_dissipation))); }},
+      SettingField<S>{"nonconvex",
+                      [](S& s, py::handle v) {
+                        const std::string t = setting_string(v, "nonconvex");
+                        if (t != "report" && t != "shift")
+                          throw InputError("nonconvex = '" + t + "' is not one of: report, shift");
+                        s.nonconvex = t == "shift" ? learn::NonconvexPolicy::shift : learn::NonconvexPolicy::report;
+                      },
+                      [](const S& s) {
+                        return py::object(py::str(s.nonconvex == learn::NonconvexPolicy::shift ? "shift" : "report"));
+                      }}};
   return fields;
 }
 

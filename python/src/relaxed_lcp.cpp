@@ -11,9 +11,11 @@
 // required, p and e default to 0. Batched arguments: batch.hpp. Each sample keeps its own
 // RelaxedLcpSolver workspace (the analysis is reused across calls; results are equal bit
 // for bit to a fresh workspace's, relaxed_lcp.hpp).
-// Settings: keyword arguments named as RelaxedLcpSettings' fields (max_dissipation as
-// 'none' | 'qp' | 'ext', nonconvex as 'report' | 'shift'); QP settings as a dict `qp`.
+// Settings: keyword arguments named as RelaxedLcpSettings' fields (the table of
+// objective.hpp: max_dissipation as 'none' | 'qp' | 'ext', nonconvex as 'report' | 'shift');
+// QP settings as a dict `qp`.
 #include "batch.hpp"
+#include "objective.hpp"
 
 #include <lcprelax/learn/relaxed_lcp.hpp>
 
@@ -26,29 +28,6 @@ namespace {
 using learn::RelaxedLcpData;
 using learn::RelaxedLcpSettings;
 using learn::RelaxedLcpSolver;
-
-const std::vector<SettingField<RelaxedLcpSettings>>& relaxed_fields() {
-  using S = RelaxedLcpSettings;
-  static const std::vector<SettingField<S>> fields = {
-      double_field("a1", &S::a1), double_field("a2", &S::a2), double_field("a3", &S::a3),
-      double_field("a4", &S::a4), double_field("a5", &S::a5),
-      bool_field("soft_nonnegativity", &S::soft_nonnegativity), bool_field("soft_lambdas", &S::soft_lambdas),
-      bool_field("l1_softness", &S::l1_softness), double_field("regularization", &S::regularization),
-      SettingField<S>{"max_dissipation",
-                      [](S& s, py::handle v) { s.max_dissipation = learn::parse_max_dissipation(setting_string(v, "max_dissipation")); },
-                      [](const S& s) { return py::object(py::str(learn::to_string(s.max_dissipation))); }},
-      SettingField<S>{"nonconvex",
-                      [](S& s, py::handle v) {
-                        const std::string t = setting_string(v, "nonconvex");
-                        if (t != "report" && t != "shift")
-                          throw InputError("nonconvex = '" + t + "' is not one of: report, shift");
-                        s.nonconvex = t == "shift" ? learn::NonconvexPolicy::shift : learn::NonconvexPolicy::report;
-                      },
-                      [](const S& s) {
-                        return py::object(py::str(s.nonconvex == learn::NonconvexPolicy::shift ? "shift" : "report"));
-                      }}};
-  return fields;
-}
 
 struct PyRelaxedBatchResult {
   py::array_t<double> cost, lambda;
@@ -137,7 +116,7 @@ class PyRelaxedLcpBatch {
     return out;
   }
 
-  py::dict settings() const { return settings_dict(settings_, relaxed_fields()); }
+  py::dict settings() const { return settings_dict(settings_, relaxed_loss_fields()); }
   const RelaxedLcpData& pattern() const { return pattern_; }
 
  private:
@@ -168,7 +147,7 @@ void bind_relaxed_lcp(py::module_& m) {
       .def(py::init([](const py::object& M, const py::object& P, const py::object& E, int threads,
                        const py::object& qp, const py::kwargs& kw) {
              RelaxedLcpSettings s;
-             apply_settings(s, relaxed_fields(), kw, "RelaxedLcpBatch()");
+             apply_settings(s, relaxed_loss_fields(), kw, "RelaxedLcpBatch()");
              QpSettings q;
              if (!qp.is_none()) apply_settings(q, qp_fields(), py::kwargs(py::dict(qp)), "RelaxedLcpBatch(qp=...)");
              return std::make_unique<PyRelaxedLcpBatch>(M, P, E, threads, s, q);
