@@ -52,10 +52,15 @@ std::string learn_list(const py::object& learn) {
 class PySceneObjective : public PyObjective {
  public:
   PySceneObjective(const py::object& scene_source, const std::string& method, const py::object& learn,
-                   bool mu_per_pair, bool relaxed_warm_center, int threads, const learn::SceneDatasetSettings& ds) {
+                   bool mu_per_pair, bool relaxed_warm_center, int threads, const learn::SceneDatasetSettings& ds,
+                   const py::object& qp) {
     learn::SceneLossSettings ls;
     ls.method = learn::parse_loss_method(method);
     ls.relaxed_warm_center = relaxed_warm_center;
+    // The relaxed and convex losses' QP settings (eps_abs ...); their adjoint gradients are
+    // as accurate as these solves (tighten eps_abs to compare with finite differences).
+    apply_settings_dict(ls.relaxed.qp, qp_fields(), qp, "qp");
+    apply_settings_dict(ls.convex.qp, qp_fields(), qp, "qp");
     learn::SceneParameterSettings ps;
     try {
       ps.learn = learn::parse_scene_learn_flags(learn_list(learn));
@@ -130,7 +135,7 @@ void bind_scene_learning(py::module_& m) {
       .def(py::init([](const py::object& scene, const std::string& method, const py::object& learn, bool mu_per_pair,
                        bool relaxed_warm_center, int steps, long long seed, double push_fraction, int push_interval, double push_force_min,
                        double push_force_max, double push_torque_max, double pose_noise, double velocity_noise,
-                       bool drop_without_contact, int threads) {
+                       bool drop_without_contact, int threads, const py::object& qp) {
              if (seed < 0) throw InputError("seed: must be >= 0");
              learn::SceneDatasetSettings ds;
              ds.steps = steps, ds.seed = static_cast<std::uint64_t>(seed);
@@ -139,16 +144,19 @@ void bind_scene_learning(py::module_& m) {
              ds.push_torque_max = push_torque_max, ds.pose_noise = pose_noise, ds.velocity_noise = velocity_noise;
              ds.drop_without_contact = drop_without_contact;
              ds.threads = threads;
-             return std::make_unique<PySceneObjective>(scene, method, learn, mu_per_pair, relaxed_warm_center, threads, ds);
+             return std::make_unique<PySceneObjective>(scene, method, learn, mu_per_pair, relaxed_warm_center, threads, ds,
+                                                       qp);
            }),
            py::arg("scene"), py::kw_only(), py::arg("method") = "relaxed", py::arg("learn") = "mu",
            py::arg("mu_per_pair") = false, py::arg("relaxed_warm_center") = true, py::arg("steps") = 100, py::arg("seed") = 1,
            py::arg("push_fraction") = 0.25, py::arg("push_interval") = 1, py::arg("push_force_min") = 20.0,
            py::arg("push_force_max") = 80.0, py::arg("push_torque_max") = 0.5, py::arg("pose_noise") = 0.0,
            py::arg("velocity_noise") = 0.0, py::arg("drop_without_contact") = true, py::arg("threads") = 0,
+           py::arg("qp") = py::none(),
            "SceneObjective(scene, *, method='relaxed', learn='mu', steps=100, seed=1, ...): scene is a\n"
            "scene JSON path or text; its Simulator generates `steps` transitions with random pushes\n"
-           "(push_* in N and N*m; learn/scene_dataset.hpp) and noise (m, rad; m/s, rad/s).")
+           "(push_* in N and N*m; learn/scene_dataset.hpp) and noise (m, rad; m/s, rad/s). qp: a dict\n"
+           "of QpSettings for the relaxed and convex losses' QPs (gradients are as accurate as them).")
       .def_property_readonly("true_values", &PySceneObjective::true_values, "theta of the scene (the data's truth)")
       .def("perturbed_values", &PySceneObjective::perturbed_values, py::arg("fraction"), py::arg("seed") = 1,
            "the truth perturbed deterministically (log parameters by (1 +- fraction), ...)")
