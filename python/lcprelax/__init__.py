@@ -3,8 +3,9 @@
 Batched, parallel versions (QpBatch, LemkeBatch, RelaxedLcpBatch) back the PyTorch layers
 of ``lcprelax.torch`` (QpLayer, LcpLayer, RelaxedLcpLoss; imported separately, it needs torch).
 Simulation: :class:`Simulator` steps a scene (JSON file or text; ``pile_scene`` and friends
-generate one); SI units, poses (x, y, θ) per body. Learning: :class:`BlockObjective` and
-:class:`SceneObjective` give a loss and its gradient in the learned parameters
+generate one); SI units, poses (x, y, θ) per body. Learning: :class:`BlockObjective`,
+:class:`PolygonObjective` and :class:`SceneObjective` give a loss and its gradient in the
+learned parameters
 (``evaluate(theta) -> (loss, gradient)``).
 
 The solvers and readers are implemented in C++ (the compiled module ``lcprelax._lcprelax``);
@@ -32,6 +33,7 @@ Example::
 from ._lcprelax import (  # noqa: F401
     BlockObjective,
     Objective,
+    PolygonObjective,
     SceneObjective,
     Simulator,
     StepStats,
@@ -91,6 +93,7 @@ __all__ = [
     "incline_scene",
     "Objective",
     "BlockObjective",
+    "PolygonObjective",
     "SceneObjective",
     "generate_block_data",
 ]

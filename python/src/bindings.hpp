@@ -43,6 +43,7 @@ void bind_simulator(py::module_& m);
 void bind_scenes(py::module_& m);
 void bind_learning(py::module_& m);
 void bind_scene_learning(py::module_& m);
+void bind_polygon_learning(py::module_& m);
 
 /// Takes a solver for one call or fails: a solver busy in another thread is a UsageError
 /// (std::logic_error "<solver> is in use by another thread").

@@ -23,4 +23,5 @@ PYBIND11_MODULE(_lcprelax, m) {
   lcprelax::python::bind_scenes(m);
   lcprelax::python::bind_learning(m);
   lcprelax::python::bind_scene_learning(m);
+  lcprelax::python::bind_polygon_learning(m);
 }

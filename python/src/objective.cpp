@@ -37,6 +37,18 @@ const std::vector<SettingField<learn::RelaxedLcpSettings>>& relaxed_loss_fields(
   return fields;
 }
 
+std::string learn_kinds(const py::object& learn) {
+  if (PyUnicode_Check(learn.ptr())) return learn.cast<std::string>();
+  if (!py::isinstance<py::list>(learn) && !py::isinstance<py::tuple>(learn))
+    throw py::type_error("learn must be a str ('mu,mass') or a list of str");
+  std::string out;
+  for (auto item : learn) {
+    if (!PyUnicode_Check(item.ptr())) throw py::type_error("learn must be a list of str");
+    out += (out.empty() ? "" : ",") + item.cast<std::string>();
+  }
+  return out;
+}
+
 void PyObjective::init(std::string method, learn::ParameterSet base, std::vector<Index> learned, int threads,
                        std::shared_ptr<void> owned, std::unique_ptr<learn::Objective> objective) {
   if (threads < 0) throw InputError("threads: must be >= 0 (0: all cores)");

@@ -67,6 +67,9 @@ class PyObjective {
   std::mutex mutex_;
 };
 
+/// The `learn` keyword (a comma-separated str or a list of str) as one comma-separated str;
+/// TypeError otherwise.
+std::string learn_kinds(const py::object& learn);
 /// Registers lcprelax.Objective (the base class of BlockObjective, SceneObjective).
 void bind_objective_base(py::module_& m);
 /// The keyword table of learn::RelaxedLcpSettings (a1..a5, soft flags, max_dissipation, ...).

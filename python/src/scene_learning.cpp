@@ -37,18 +37,6 @@ struct SceneData {
   std::unique_ptr<learn::SceneParameterMap> map;
 };
 
-std::string learn_list(const py::object& learn) {
-  if (PyUnicode_Check(learn.ptr())) return learn.cast<std::string>();
-  if (!py::isinstance<py::list>(learn) && !py::isinstance<py::tuple>(learn))
-    throw py::type_error("learn must be a str ('mu,mass') or a list of str");
-  std::string out;
-  for (auto item : learn) {
-    if (!PyUnicode_Check(item.ptr())) throw py::type_error("learn must be a list of str");
-    out += (out.empty() ? "" : ",") + item.cast<std::string>();
-  }
-  return out;
-}
-
 class PySceneObjective : public PyObjective {
  public:
   PySceneObjective(const py::object& scene_source, const std::string& method, const py::object& learn,
@@ -63,7 +51,7 @@ class PySceneObjective : public PyObjective {
     apply_settings_dict(ls.convex.qp, qp_fields(), qp, "qp");
     learn::SceneParameterSettings ps;
     try {
-      ps.learn = learn::parse_scene_learn_flags(learn_list(learn));
+      ps.learn = learn::parse_scene_learn_flags(learn_kinds(learn));
     } catch (const InputError& e) {
       std::string msg = e.what();
       if (msg.rfind("--learn: ", 0) == 0) msg = msg.substr(9);
