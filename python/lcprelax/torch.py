@@ -18,7 +18,8 @@ order of the layer's ``*_pattern`` CSC matrices (``layer.P_pattern.data`` order:
 column, rows sorted, duplicates summed). Every tensor argument is float64 on the CPU, of
 shape ``(k,)`` (shared by the batch; its gradient is summed over the batch) or ``(B, k)``
 (one row per sample). Without any batched argument B = 1 and the outputs have no batch
-dimension. Another dtype or device is a TypeError: convert with ``.double().cpu()``.
+dimension (with one, even of size 1, they keep it). Another dtype or device is a TypeError:
+convert with ``.double().cpu()``.
 
 A sample that ends without a solution raises :class:`lcprelax.SolveError` in forward,
 naming the sample and its status (never NaN silently). Gradients exist where the solution
@@ -57,7 +58,8 @@ def _as_numpy(t, name):
 
 
 def _batched(tensors):
-    return any(t is not None and t.dim() == 2 and t.shape[0] != 1 for t in tensors)
+    """Whether any argument has a batch dimension (then the outputs keep theirs, even B = 1)."""
+    return any(t is not None and t.dim() == 2 for t in tensors)
 
 
 def _check(status, has_solution, what):

@@ -101,6 +101,9 @@ def test_unbatched_call_returns_unbatched_tensors(small_qp):
     x = layer(torch.tensor(small_qp["q"]), b=torch.tensor(small_qp["b"]), l=torch.tensor(small_qp["l"]),
               u=torch.tensor(small_qp["u"]), xl=torch.tensor(small_qp["xl"]), xu=torch.tensor(small_qp["xu"]))
     assert x.shape == (5,)
+    x1 = layer(torch.tensor(small_qp["q"])[None, :], b=torch.tensor(small_qp["b"]), l=torch.tensor(small_qp["l"]),
+               u=torch.tensor(small_qp["u"]), xl=torch.tensor(small_qp["xl"]), xu=torch.tensor(small_qp["xu"]))
+    assert x1.shape == (1, 5) and torch.equal(x1[0], x)  # a batch of one keeps its dimension
 
 
 def test_bad_input_raises_clear_errors(small_qp):
