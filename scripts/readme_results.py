@@ -37,6 +37,7 @@ TARGET_BACKWARD = 0.2       # backward / forward time of a QP solve (n >= 10,000
 TARGET_PILE_SLOPE = 1.3     # log-log slope of the pile's CPU time per step against contacts
 TARGET_THREADS = 1.8        # learning samples/s, 2 threads / 1 thread
 TARGET_LEARN_ERROR = 0.01   # largest relative parameter error for "recovered"
+TARGET_FC2D_2020_SECONDS = 2.0  # Lemke on the 2,020-contact granular fc2d problem
 TARGET_QP_LAYER = 10.0      # dense batched PyTorch reference / QpLayer, batch 1,024, 2 threads
 
 
@@ -184,6 +185,15 @@ def lemke(results):
                     f"lcprelax {ok} in {seconds(t)}; time / Siconos Lemke {g(t / float(lem['seconds']), 2)} "
                     f"({seconds(lem['seconds'])}), / Siconos NSGS {g(t / float(nsgs['seconds']), 2)} "
                     f"({seconds(nsgs['seconds'])})", "", src(name)))
+    big = "lemke_crash_flip_2020.csv"
+    r = only(read_csv(results, big), big, problem="fc2d_granularflowonwall_02020_00213", solver="lcprelax_crash")
+    t = float(r["seconds"])
+    out.append(("fc2d `fc2d_granularflowonwall_02020_00213` (2,020 contacts), Lemke from a PGS crash basis, "
+                "Siconos fc2d error ≤ 1e-10",
+                f"{'solved' if r['ok'] == '1' else 'not solved (' + r['status'] + ')'} in {seconds(t)} "
+                f"({int(r['iterations']):,} pivots, error {g(r['error'])})",
+                f"≤ {goal(TARGET_FC2D_2020_SECONDS)} s: {verdict(r['ok'] == '1' and t <= TARGET_FC2D_2020_SECONDS)}",
+                src(big)))
     return out
 
 
