@@ -82,6 +82,16 @@ def _grad_for(inp, g):
     return g
 
 
+def _save_inputs(ctx, inputs):
+    """Saves the (optional) input tensors for backward; None entries are remembered as such."""
+    ctx.save_for_backward(*[t if t is not None else torch.empty(0) for t in inputs])
+    ctx.given = [t is not None for t in inputs]
+
+
+def _saved_inputs(ctx):
+    return [t if given else None for t, given in zip(ctx.saved_tensors, ctx.given)]
+
+
 _QP_INPUTS = ("q", "P", "A", "b", "G", "l", "u", "xl", "xu")
 
 
@@ -93,8 +103,7 @@ class _QpFunction(torch.autograd.Function):
         _check(r.status, r.has_solution, "QpLayer")
         ctx.layer, ctx.generation = layer, r.generation
         ctx.arrays = arrays
-        ctx.save_for_backward(*[t if t is not None else torch.empty(0) for t in inputs])
-        ctx.given = [t is not None for t in inputs]
+        _save_inputs(ctx, inputs)
         x, y, z = (torch.from_numpy(a) for a in (r.x, r.y, r.z))
         return x, y, z
 
@@ -104,7 +113,7 @@ class _QpFunction(torch.autograd.Function):
         if layer.engine.generation != ctx.generation:
             layer.engine.solve(**ctx.arrays)  # another batch was solved since: redo this one
         g = layer.engine.backward(dx.contiguous().numpy(), dy.contiguous().numpy(), dz.contiguous().numpy())
-        saved = [t if given else None for t, given in zip(ctx.saved_tensors, ctx.given)]
+        saved = _saved_inputs(ctx)
         return (None,) + tuple(_grad_for(t, g[name]) for name, t in zip(_QP_INPUTS, saved))
 
 
@@ -139,8 +148,7 @@ class _LcpFunction(torch.autograd.Function):
         r = layer.engine.solve(**arrays)
         _check(r.status, r.has_solution, "LcpLayer")
         ctx.layer, ctx.generation, ctx.arrays = layer, r.generation, arrays
-        ctx.save_for_backward(q, M if M is not None else torch.empty(0))
-        ctx.has_M = M is not None
+        _save_inputs(ctx, (q, M))
         return torch.from_numpy(r.z)
 
     @staticmethod
@@ -149,8 +157,8 @@ class _LcpFunction(torch.autograd.Function):
         if layer.engine.generation != ctx.generation:
             layer.engine.solve(**ctx.arrays)
         g = layer.engine.backward(dz.contiguous().numpy())
-        q, M = ctx.saved_tensors
-        return None, _grad_for(q, g["q"]), _grad_for(M if ctx.has_M else None, g["M"])
+        q, M = _saved_inputs(ctx)
+        return None, _grad_for(q, g["q"]), _grad_for(M, g["M"])
 
 
 class LcpLayer(torch.nn.Module):
@@ -180,14 +188,13 @@ class _RelaxedFunction(torch.autograd.Function):
         r = layer.engine.evaluate(**arrays)
         _check(r.status, r.solved, "RelaxedLcpLoss")
         ctx.grads = r.gradient
-        ctx.save_for_backward(*[t if t is not None else torch.empty(0) for t in inputs])
-        ctx.given = [t is not None for t in inputs]
+        _save_inputs(ctx, inputs)
         return torch.from_numpy(r.cost)
 
     @staticmethod
     def backward(ctx, dc):
         w = dc.detach().numpy()[:, None]
-        saved = [t if given else None for t, given in zip(ctx.saved_tensors, ctx.given)]
+        saved = _saved_inputs(ctx)
         return (None,) + tuple(_grad_for(t, w * ctx.grads[name]) for name, t in zip(_RELAXED_INPUTS, saved))
 
 

@@ -37,6 +37,8 @@ const std::vector<SettingField<learn::RelaxedLcpSettings>>& relaxed_loss_fields(
   return fields;
 }
 
+namespace {
+
 std::string learn_kinds(const py::object& learn) {
   if (PyUnicode_Check(learn.ptr())) return learn.cast<std::string>();
   if (!py::isinstance<py::list>(learn) && !py::isinstance<py::tuple>(learn))
@@ -47,6 +49,42 @@ std::string learn_kinds(const py::object& learn) {
     out += (out.empty() ? "" : ",") + item.cast<std::string>();
   }
   return out;
+}
+
+}  // namespace
+
+learn::SceneLearnFlags parse_learn_kinds(const py::object& learn) {
+  try {
+    return learn::parse_scene_learn_flags(learn_kinds(learn));
+  } catch (const InputError& e) {
+    std::string msg = e.what();
+    if (msg.rfind("--learn: ", 0) == 0) msg = msg.substr(9);  // the CLI's option name
+    throw InputError("learn: " + msg);
+  }
+}
+
+std::vector<Index> learned_indices(const learn::ParameterSet& set) {
+  std::vector<Index> learned;
+  for (Index k = 0; k < set.size(); ++k)
+    if (set[k].learn) learned.push_back(k);
+  if (learned.empty()) throw InputError("learn: no parameter of the chosen kinds");
+  return learned;
+}
+
+void check_perturbation(double fraction, long long seed) {
+  if (!(fraction >= 0 && fraction < 1)) throw InputError("fraction: must be in [0, 1)");
+  if (seed < 0) throw InputError("seed: must be >= 0");
+}
+
+void apply_loss_qp_settings(learn::SceneLossSettings& settings, const py::object& qp) {
+  apply_settings_dict(settings.relaxed.qp, qp_fields(), qp, "qp");
+  apply_settings_dict(settings.convex.qp, qp_fields(), qp, "qp");
+}
+
+py::array_t<double> PyObjective::learned_values(const learn::ParameterSet& set) const {
+  Vector v(static_cast<Index>(learned_.size()));
+  for (std::size_t i = 0; i < learned_.size(); ++i) v(static_cast<Index>(i)) = set[learned_[i]].value;
+  return to_numpy(v);
 }
 
 void PyObjective::init(std::string method, learn::ParameterSet base, std::vector<Index> learned, int threads,

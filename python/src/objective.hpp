@@ -18,6 +18,8 @@
 
 #include <lcprelax/learn/parameters.hpp>
 #include <lcprelax/learn/relaxed_lcp.hpp>
+#include <lcprelax/learn/scene_params.hpp>
+#include <lcprelax/learn/scene_objective.hpp>
 #include <lcprelax/learn/trainer.hpp>
 
 #include <memory>
@@ -49,6 +51,8 @@ class PyObjective {
             std::shared_ptr<void> owned, std::unique_ptr<learn::Objective> objective);
   const learn::ParameterSet& base() const { return base_; }
   const std::vector<Index>& learned() const { return learned_; }
+  /// The learned parameters' values of `set` (same layout as base()), in θ's order.
+  py::array_t<double> learned_values(const learn::ParameterSet& set) const;
   learn::Objective& objective() { return *objective_; }
 
  public:
@@ -67,9 +71,15 @@ class PyObjective {
   std::mutex mutex_;
 };
 
-/// The `learn` keyword (a comma-separated str or a list of str) as one comma-separated str;
-/// TypeError otherwise.
-std::string learn_kinds(const py::object& learn);
+/// The `learn` keyword (a comma-separated str or a list of str) as the scene path's flags;
+/// TypeError on another type, InputError "learn: ..." naming an unknown kind.
+learn::SceneLearnFlags parse_learn_kinds(const py::object& learn);
+/// The indices of the parameters of `set` marked learned; InputError when there are none.
+std::vector<Index> learned_indices(const learn::ParameterSet& set);
+/// InputError unless 0 ≤ fraction < 1 and seed ≥ 0 (perturbed_values' arguments).
+void check_perturbation(double fraction, long long seed);
+/// Applies the `qp` keyword (a dict of QpSettings, or None) to the relaxed and convex losses.
+void apply_loss_qp_settings(learn::SceneLossSettings& settings, const py::object& qp);
 /// Registers lcprelax.Objective (the base class of BlockObjective, SceneObjective).
 void bind_objective_base(py::module_& m);
 /// The keyword table of learn::RelaxedLcpSettings (a1..a5, soft flags, max_dissipation, ...).

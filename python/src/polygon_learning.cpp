@@ -47,16 +47,8 @@ class PyPolygonObjective : public PyObjective {
     learn::PolygonLossSettings ls;
     ls.method = learn::parse_polygon_method(method);
     ls.relaxed_warm_center = relaxed_warm_center;
-    apply_settings_dict(ls.relaxed.qp, qp_fields(), qp, "qp");
-    apply_settings_dict(ls.convex.qp, qp_fields(), qp, "qp");
-    learn::PolygonLearnFlags flags;
-    try {
-      flags = learn::parse_scene_learn_flags(learn_kinds(learn));
-    } catch (const InputError& e) {
-      std::string msg = e.what();
-      if (msg.rfind("--learn: ", 0) == 0) msg = msg.substr(9);
-      throw InputError("learn: " + msg);
-    }
+    apply_loss_qp_settings(ls, qp);
+    const learn::PolygonLearnFlags flags = parse_learn_kinds(learn);
     if (flags.gap || flags.residual) throw InputError("learn: gap and residual are learned by SceneObjective only");
     learn::PolygonDataSettings ds;
     ds.seed = static_cast<std::uint64_t>(seed);
@@ -77,10 +69,7 @@ class PyPolygonObjective : public PyObjective {
     }
     flags_ = flags;
     learn::ParameterSet truth = learn::make_polygon_parameters(owned->truth, flags);
-    std::vector<Index> learned;
-    for (Index k = 0; k < truth.size(); ++k)
-      if (truth[k].learn) learned.push_back(k);
-    if (learned.empty()) throw InputError("learn: no parameter of the chosen kinds");
+    const std::vector<Index> learned = learned_indices(truth);
     auto objective = std::make_unique<learn::PolygonObjective>(owned->data, owned->truth, ls);
     data_ = owned.get();
     init(method, truth, learned, threads, owned, std::move(objective));
@@ -89,8 +78,7 @@ class PyPolygonObjective : public PyObjective {
   py::array_t<double> true_values() const { return learned_values(base()); }
 
   py::array_t<double> perturbed_values(double fraction, long long seed) const {
-    if (!(fraction >= 0 && fraction < 1)) throw InputError("fraction: must be in [0, 1)");
-    if (seed < 0) throw InputError("seed: must be >= 0");
+    check_perturbation(fraction, seed);
     const learn::PolygonModel m =
         learn::perturb_polygon_model(data_->truth, flags_, fraction, static_cast<std::uint64_t>(seed));
     return learned_values(learn::make_polygon_parameters(m, flags_));
@@ -105,11 +93,6 @@ class PyPolygonObjective : public PyObjective {
   }
 
  private:
-  py::array_t<double> learned_values(const learn::ParameterSet& set) const {
-    Vector v(static_cast<Index>(learned().size()));
-    for (std::size_t i = 0; i < learned().size(); ++i) v(static_cast<Index>(i)) = set[learned()[i]].value;
-    return to_numpy(v);
-  }
   learn::PolygonLearnFlags flags_;
   const PolygonData* data_ = nullptr;
 };

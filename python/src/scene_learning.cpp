@@ -47,16 +47,9 @@ class PySceneObjective : public PyObjective {
     ls.relaxed_warm_center = relaxed_warm_center;
     // The relaxed and convex losses' QP settings (eps_abs ...); their adjoint gradients are
     // as accurate as these solves (tighten eps_abs to compare with finite differences).
-    apply_settings_dict(ls.relaxed.qp, qp_fields(), qp, "qp");
-    apply_settings_dict(ls.convex.qp, qp_fields(), qp, "qp");
+    apply_loss_qp_settings(ls, qp);
     learn::SceneParameterSettings ps;
-    try {
-      ps.learn = learn::parse_scene_learn_flags(learn_kinds(learn));
-    } catch (const InputError& e) {
-      std::string msg = e.what();
-      if (msg.rfind("--learn: ", 0) == 0) msg = msg.substr(9);
-      throw InputError("learn: " + msg);
-    }
+    ps.learn = parse_learn_kinds(learn);
     ps.mu_per_pair = mu_per_pair;
     if (std::string e = ds.validation_error(); !e.empty()) throw InputError("SceneObjective: " + e);
     Scene scene = scene_from_python(scene_source);
@@ -70,10 +63,7 @@ class PySceneObjective : public PyObjective {
     ls.convex.softening.method = owned->data.scene.settings.convex_softening.method;
     owned->map = std::make_unique<learn::SceneParameterMap>(owned->data.scene.world, ps);
     learn::ParameterSet truth = owned->map->parameters(owned->data.scene.world);
-    std::vector<Index> learned;
-    for (Index k = 0; k < truth.size(); ++k)
-      if (truth[k].learn) learned.push_back(k);
-    if (learned.empty()) throw InputError("learn: the scene has no parameter of the chosen kinds");
+    const std::vector<Index> learned = learned_indices(truth);
     auto objective = std::make_unique<learn::SceneObjective>(owned->data, *owned->map, ls);
     scene_objective_ = objective.get();
     data_ = owned.get();
@@ -83,8 +73,7 @@ class PySceneObjective : public PyObjective {
   py::array_t<double> true_values() const { return learned_values(base()); }
 
   py::array_t<double> perturbed_values(double fraction, long long seed) const {
-    if (!(fraction >= 0 && fraction < 1)) throw InputError("fraction: must be in [0, 1)");
-    if (seed < 0) throw InputError("seed: must be >= 0");
+    check_perturbation(fraction, seed);
     return learned_values(learn::perturb_scene_parameters(base(), *data_->map, fraction, static_cast<std::uint64_t>(seed)));
   }
 
@@ -102,11 +91,6 @@ class PySceneObjective : public PyObjective {
   }
 
  private:
-  py::array_t<double> learned_values(const learn::ParameterSet& set) const {
-    Vector v(static_cast<Index>(learned().size()));
-    for (std::size_t i = 0; i < learned().size(); ++i) v(static_cast<Index>(i)) = set[learned()[i]].value;
-    return to_numpy(v);
-  }
   const SceneData* data_ = nullptr;
 
  public:
