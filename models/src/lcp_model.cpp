@@ -79,6 +79,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   LemkeSettings polish = plain;  // from the perturbed solution's basis: a short crash path
   polish.crash_start = true;
   polish.max_pivots = std::max<long>(1, n / 10);
+  polish.crash_cold_fallback = false;  // a cold path capped at n/10 cannot finish (≈ n pivots)
   LemkeSettings warm_only = plain;  // the warm basis if it is feasible; a cold start stops at once
   warm_only.max_pivots = 1;
   // Kept alive: r and inexact point into the results of earlier attempts. A deque never

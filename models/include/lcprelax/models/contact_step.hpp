@@ -27,8 +27,8 @@
 //      the ties of the degenerate pivots (the perturbation that the lexicographic rule only
 //      simulates, made real: in floating point the rule's tie tolerance lets large
 //      degenerate piles cycle or end on a ray). Its solution's basis then starts a crash
-//      path on q of at most n/10 pivots ("polish"; 0–20 on a 200-body pile), exact, so
-//      resting bodies stay exactly at rest and the next step is warm-started. Up to
+//      path on q of at most n/10 pivots ("polish"; 0–20 on a 200-body pile; no cold start
+//      after it), exact, so resting bodies stay exactly at rest and the next step is warm-started. Up to
 //      kLcpPerturbationSeeds patterns, δ ten times larger for each next one;
 //   3. when no polish succeeded: Lemke on q from the all-w basis, at most
 //      kLcpExactPivotsPerUnknown pivots per unknown; failing that, a perturbed solution is
@@ -76,8 +76,13 @@ constexpr int kLcpPerturbationSeeds = 3;
 /// Pivot cap per LCP unknown of the crash path from the previous step's basis (step 1b
 /// above). On a dropping 300-body pile (islands of 3,360–4,300 unknowns, steps 20–30) the
 /// paths took 0.22–0.39 pivots per unknown (once 0.67) against 0.65–0.78 for the cold
-/// path; at 1/10 (the earlier cap) they all stopped at the cap.
-constexpr double kLcpWarmCrashPivotsPerUnknown = 0.5;
+/// path; at 1/10 they all stopped at the cap. On a 500-body pile (one island of
+/// 6,800–8,300 unknowns) the successful paths take 0.41–0.51 per unknown while the cold
+/// path takes 1.4–1.7, so a cap of 1/2 stopped half of them just short of their end and
+/// paid for both (`run_pile_scaling --sizes 100,200,500 --models lcp --steps 6`: pivots per
+/// step at 500 bodies 18,154 with 1/2, 12,322 with 1; 100 and 200 bodies unchanged). A
+/// path that fails at the cap costs at most about one cold solve more.
+constexpr double kLcpWarmCrashPivotsPerUnknown = 1.0;
 /// Pivot cap per LCP unknown of the exact attempt from the all-w basis (step 3 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
