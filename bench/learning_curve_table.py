@@ -7,7 +7,13 @@ predicted v⁺ over the held-out transitions that truly stick (in units of μmg/
 sample evaluations that failed during training (summed over the seeds). Standard library only.
 
     bench/learning_curve_table.py [--csv bench/results/learning_curves.csv [--csv MORE.csv]]
-        > bench/results/learning_curves.md
+        [--scene-csv bench/results/learning_curves_scene.csv] > bench/results/learning_curves.md
+
+With --scene-csv (bench/run_learning_curves_scene's CSV, repeatable) a second table follows:
+per scene (polygon, pile30), parameterization and loss, the smallest N whose median
+held-out error is <= 1% (and whose largest is), and the median error, the mean stick/slip
+mode error and the failed evaluations (held-out predictions; training) at N = 1,000 or the
+largest N run.
 """
 import argparse
 import csv
@@ -18,6 +24,7 @@ from collections import defaultdict
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--csv", action="append", help="CSV of run_learning_curves (repeat to merge runs)")
+    ap.add_argument("--scene-csv", action="append", default=[], help="CSV of run_learning_curves_scene (repeatable)")
     a = ap.parse_args()
     paths = a.csv or ["bench/results/learning_curves.csv"]
     runs = defaultdict(lambda: defaultdict(list))
@@ -48,6 +55,39 @@ def main():
         print("| %s | %s | %s | %s | %.3g | %.3g | %.2g | %d | %.3g (%.3g) at %d |" % (
             key[0], key[1], med, every, statistics.median(errs[n]), mode, stick, failed,
             statistics.median(errs[last]), last_mode, last))
+
+    if a.scene_csv:
+        scene_table(a.scene_csv)
+
+
+def scene_table(paths):
+    runs = defaultdict(lambda: defaultdict(list))
+    order = []
+    for path in paths:
+        with open(path, newline="") as f:
+            for r in csv.DictReader(f):
+                key = (r["scene"], r["param"], r["method"])
+                if key not in runs:
+                    order.append(key)
+                runs[key][int(r["samples"])].append(r)
+    print()
+    print("Polygon and 30-body pile (bench/run_learning_curves_scene; loss `relaxed` = relaxed step loss by "
+          "Adam, `relaxed/lbfgs` by L-BFGS; N counts transitions of the whole scene):")
+    print()
+    print("| scene | parameterization | loss | seeds | N for median error ≤ 1% | N for every seed ≤ 1% | N used below | "
+          "median error | mode error | failed predictions | failed evaluations in training |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for key in order:
+        by_n = runs[key]
+        sizes = sorted(by_n)
+        errs = {n: [float(r["test_error"]) for r in by_n[n]] for n in sizes}
+        med = next((str(n) for n in sizes if statistics.median(errs[n]) <= 0.01), "> %d" % sizes[-1])
+        every = next((str(n) for n in sizes if max(errs[n]) <= 0.01), "> %d" % sizes[-1])
+        n = 1000 if 1000 in by_n else sizes[-1]
+        mode = statistics.mean(float(r["mode_error"]) for r in by_n[n])
+        print("| %s | %s | %s | %d | %s | %s | %d | %.3g | %.3g | %d | %d |" % (
+            key[0], key[1], key[2], len(by_n[n]), med, every, n, statistics.median(errs[n]), mode,
+            sum(int(r["failed"]) for r in by_n[n]), sum(int(r["train_failed"]) for r in by_n[n])))
 
 
 if __name__ == "__main__":

@@ -47,8 +47,26 @@ run "$B/run_learning_curves" --csv "$R/learning_curves.csv" --plot "$R/plots/lea
   > "$R/learning_curves.txt"
 run "$B/run_learning_curves" --methods hard --sizes 3000,10000 --csv "$R/learning_curves_hard_10k.csv" \
   > "$R/learning_curves_hard_10k.txt"
+# The polygon and the 30-body pile on the scene path (relaxed loss; Adam as the CLIs, and L-BFGS
+# for the polygon); the pile at N = 10, 30 only (a run at N = 30 takes 2-5 min on 1 thread).
+run "$B/run_learning_curves_scene" --scene polygon --params physical,structured --sizes 10,30,100,300,1000 --seeds 5 \
+  --test 400 --sanity-size 100 --epochs 300 --csv "$R/learning_curves_scene_polygon.csv" \
+  --plot "$R/plots/learning_curves_scene_polygon.png" > "$R/learning_curves_scene_polygon.txt"
+run "$B/run_learning_curves_scene" --scene polygon --params residual --sizes 10,30,100,300,1000 --seeds 5 \
+  --test 400 --sanity-size 0 --epochs 300 --csv "$R/learning_curves_scene_polygon_residual.csv" \
+  --plot "$R/plots/learning_curves_scene_polygon_residual.png" > "$R/learning_curves_scene_polygon_residual.txt"
+run "$B/run_learning_curves_scene" --scene polygon --params physical,structured --optimizer lbfgs --epochs 100 \
+  --sizes 10,30,100,300,1000 --seeds 5 --test 400 --sanity-size 0 --csv "$R/learning_curves_scene_polygon_lbfgs.csv" \
+  > "$R/learning_curves_scene_polygon_lbfgs.txt"
+run "$B/run_learning_curves_scene" --scene pile30 --params physical,structured --sizes 10,30 --seeds 5 \
+  --test 30 --sanity-size 10 --epochs 300 --csv "$R/learning_curves_scene_pile30.csv" \
+  --plot "$R/plots/learning_curves_scene_pile30.png" > "$R/learning_curves_scene_pile30.txt"
+{ head -1 "$R/learning_curves_scene_polygon.csv"
+  for f in polygon polygon_residual polygon_lbfgs pile30; do tail -n +2 "$R/learning_curves_scene_$f.csv"; done
+} > "$R/learning_curves_scene.csv"
+cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,pile30}.txt > "$R/learning_curves_scene.txt"
 run python3 bench/learning_curve_table.py --csv "$R/learning_curves.csv" --csv "$R/learning_curves_hard_10k.csv" \
-  > "$R/learning_curves.md"
+  --scene-csv "$R/learning_curves_scene.csv" > "$R/learning_curves.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
 run "$B/bench_learn_polygon" --benchmark_min_time=0.5 > "$R/learn_polygon.txt"
 run "$B/run_learn_throughput" --threads 1,2 --csv "$R/learn_throughput.csv" > "$R/learn_throughput.txt"
