@@ -1,6 +1,6 @@
 // `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex]
 //  [--softening exp|impedance|penalty] [--dt S] [--gravity G] [--qp-eps E] [--lemke-tol E]
-//  [--threads T] [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json]
+//  [--post-stabilization-passes K] [--threads T] [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json]
 //  [--export-fc2d FILE] [--json]` (docs/cli.md): random convex polygons dropped into a
 // container (or a scene file), simulated with models/simulator.hpp.
 // Units: --dt in s; --gravity in m/s², the magnitude of gravity: a random pile's points
@@ -9,6 +9,8 @@
 // --lemke-tol Lemke's accepted complementarity residual max|min(z, w)| (lcp model and the
 // position projection; 0: 1e-9·‖q‖∞). Each is bad input (exit 2, naming the flag) unless
 // finite and in range (dt > 0, gravity ≥ 0 and ≤ 1e15, qp-eps > 0, lemke-tol ≥ 0).
+// --post-stabilization-passes K ≥ 1 (SimulatorSettings::post_stabilization_passes): after
+// the linearized position projection, up to K − 1 passes on the true overlaps.
 // Human output: a brief report (cli_report.hpp) of the JSON fields plus the scene's name,
 // time step and gravity.
 // JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
@@ -58,6 +60,7 @@ struct PileCliOptions {
   double dt = 0.0, gravity = 0.0;  // used only when --dt / --gravity are given
   double qp_eps = SimulatorSettings{}.qp.eps_abs;
   double lemke_tol = SimulatorSettings{}.lemke.residual_tolerance;
+  int projection_passes = SimulatorSettings{}.post_stabilization_passes;
   bool draw_contacts = false;
   bool json = false;
 };
@@ -103,8 +106,11 @@ void apply_physics_options(const PileCliOptions& o, const CLI::App& app, Scene& 
                  "must be a positive finite number, got " + shown(o.qp_eps));
   require_option(std::isfinite(o.lemke_tol) && o.lemke_tol >= 0.0, "--lemke-tol",
                  "must be a finite number >= 0 (0: 1e-9 times the largest |q|), got " + shown(o.lemke_tol));
+  require_option(o.projection_passes >= 1, "--post-stabilization-passes",
+                 "must be >= 1, got " + std::to_string(o.projection_passes));
   settings.qp.eps_abs = o.qp_eps;
   settings.lemke.residual_tolerance = o.lemke_tol;
+  settings.post_stabilization_passes = o.projection_passes;
 }
 
 // Progress on stderr every kProgressSeconds whatever the terminal (a long run, such as a
@@ -275,6 +281,11 @@ Command add_pile_command(CLI::App& parent) {
   app->add_option("--lemke-tol", o->lemke_tol,
                   "lcp model: largest complementarity residual accepted per step (0: 1e-9 times the problem's "
                   "largest |q|)")
+      ->capture_default_str();
+  app->add_option("--post-stabilization-passes", o->projection_passes,
+                  "position projections per step, >= 1: the first on the step's contacts (linearized), each "
+                  "further one on the overlaps still deeper than 0.1 mm at the projected positions (5 keeps a "
+                  "dropping pile's overlaps near 0.1 mm)")
       ->capture_default_str();
   add_threads_option(*app, o->threads, "the groups of touching bodies (islands)");
   app->add_option("--seed", o->seed, "random seed of the polygons' shapes, positions and velocities")->capture_default_str();

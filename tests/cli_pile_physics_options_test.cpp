@@ -6,7 +6,9 @@
 // - the values reach the simulation: the report prints the time step and gravity used, a
 //   scene file keeps its gravity's direction (|(3, −4)| = 5 scaled to 10 gives (6, −8)),
 //   and a pile without gravity makes fewer contacts than one with it;
-// - the tolerances reach the solvers: a looser --qp-eps changes the convex model's results.
+// - the tolerances reach the solvers: a looser --qp-eps changes the convex model's results;
+// - --post-stabilization-passes reaches the simulator: 5 passes leave a dropping 30-body pile
+//   (150 steps) less overlap than the default single pass (6.6 mm → 0.1 mm measured).
 #include "cli_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -43,6 +45,7 @@ TEST_F(CliPilePhysics, InvalidValuesAreBadInputNamingTheFlag) {
       {"--qp-eps 0", "--qp-eps: must be a positive finite number"},
       {"--qp-eps nan", "--qp-eps: must be a positive finite number"},
       {"--lemke-tol -1e-9", "--lemke-tol: must be a finite number >= 0"},
+      {"--post-stabilization-passes 0", "--post-stabilization-passes: must be >= 1, got 0"},
   };
   for (const auto& [flag, message] : cases) {
     CliRun r = run_cli("pile --bodies 3 --steps 2 " + flag);
@@ -93,6 +96,17 @@ TEST_F(CliPilePhysics, QpToleranceReachesTheConvexModel) {
   };
   EXPECT_NE(residual(" --qp-eps 1e-3"), residual(""));
   EXPECT_EQ(residual(" --qp-eps 1e-8"), residual(""));  // the default, given explicitly
+}
+
+TEST_F(CliPilePhysics, ProjectionPassesReachTheSimulator) {
+  const auto penetration = [](const std::string& extra) {
+    const CliRun r = run_cli("pile --bodies 30 --steps 150 --json" + extra);
+    EXPECT_EQ(r.exit_code, 0) << extra << ": " << r.err;
+    return Json::parse(r.out)["max_penetration"].get<double>();
+  };
+  const double one = penetration("");
+  EXPECT_EQ(penetration(" --post-stabilization-passes 1"), one);  // the default, given explicitly
+  EXPECT_LT(penetration(" --post-stabilization-passes 5"), 0.5 * one);
 }
 
 }  // namespace

@@ -63,6 +63,7 @@ std::string SimulatorSettings::validation_error() const {
   if (!std::isfinite(margin) || !(margin >= 0.0)) return "margin: must be finite and >= 0";
   if (model != ContactModel::lcp && model != ContactModel::convex) return "model: unknown contact model";
   if (!(penetration_slop >= 0)) return "penetration_slop: must be >= 0";
+  if (post_stabilization_passes < 1) return "post_stabilization_passes: must be >= 1";
   if (!(convex_rho >= 0) || !std::isfinite(convex_rho)) return "convex_rho: must be finite and >= 0";
   if (std::string e = convex_softening.validation_error(); !e.empty()) return "convex_softening." + e;
   if (convex_formulation != ConvexFormulation::automatic && convex_formulation != ConvexFormulation::dual &&
@@ -186,6 +187,18 @@ void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, 
   }
   for (std::size_t k = 0; k < s.bodies.size(); ++k) world_.bodies[s.bodies[k]].pose += dq.segment<3>(3 * k);
   ++stats.projected_islands;
+}
+
+bool Simulator::project_overlaps(StepStats& stats) {
+  const std::vector<Contact> overlaps = find_contacts(world_, CollisionSettings{0.0});
+  double worst = 0.0;
+  for (const Contact& c : overlaps) worst = std::max(worst, -c.gap);
+  if (worst <= settings_.penetration_slop) return false;
+  for (const Island& island : find_islands(world_, overlaps)) {
+    const ContactSystem s = assemble_contact_system(world_, overlaps, island, settings_.dt, {});
+    project_positions(s, Vector::Zero(s.num_dofs()), stats);  // φ itself: no velocity term
+  }
+  return true;
 }
 
 double speculative_contact_margin(const World& world, const SimulatorSettings& settings,
@@ -415,8 +428,11 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   }
   for (RigidBody& body : world.bodies)
     if (!body.is_static) body.pose += dt * body.velocity;
-  if (settings_.post_stabilization)
+  if (settings_.post_stabilization) {
     for (const IslandWork& wk : work) project_positions(wk.system, wk.solution.v_next, stats);
+    for (int pass = 1; pass < settings_.post_stabilization_passes; ++pass)
+      if (!project_overlaps(stats)) break;
+  }
   stats.solve_seconds = seconds_since(t0);
   time_ += dt;
   ++steps_;

@@ -91,6 +91,7 @@ const std::vector<SettingField<SimulatorSettings>>& simulator_fields() {
       named_field("convex_solver", &S::convex_solver,
                   {{ConvexSolver::interior_point, "interior_point"}, {ConvexSolver::active_set_newton, "active_set_newton"}}),
       bool_field("post_stabilization", &S::post_stabilization),
+      int_field("post_stabilization_passes", &S::post_stabilization_passes),
       bool_field("warm_start", &S::warm_start),
       int_field("threads", &S::threads),
       bool_field("reuse_convex_solvers", &S::reuse_convex_solvers),
@@ -274,7 +275,8 @@ void bind_simulator(py::module_& m) {
            "Simulator(scene, **settings): scene is a scene JSON file path (str or os.PathLike) or\n"
            "JSON text (a str starting with '{'). Keywords override the scene's settings: dt (s),\n"
            "model ('lcp' | 'convex'), margin (m), penetration_slop (m), convex_rho, softening,\n"
-           "convex_formulation, convex_solver, post_stabilization, warm_start, threads (0: all),\n"
+           "convex_formulation, convex_solver, post_stabilization, post_stabilization_passes,\n"
+           "warm_start, threads (0: all),\n"
            "reuse_convex_solvers, qp (dict of QpSettings), lemke (dict of LemkeSettings).")
       .def("step", &PySimulator::step, py::arg("applied") = py::none(),
            "Advances one step of dt. applied: None or (nbodies, 3) array of (fx, fy, torque) in\n"

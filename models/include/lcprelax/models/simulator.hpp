@@ -13,7 +13,9 @@
 //      below −slop, positions are projected by  min ½ΔqᵀMΔq  s.t.  Jn Δq + φ⁺ + slop ≥ 0,
 //      an LCP in Wnn solved by Lemke (where Lemke fails on a singular Wnn, the primal QP by
 //      the interior point); velocities are untouched, so penetration is removed without
-//      adding kinetic energy.
+//      adding kinetic energy. Up to post_stabilization_passes − 1 further passes re-detect
+//      contacts at the projected positions and project on their true gaps φ where −φ still
+//      exceeds the slop.
 // Warm starts: each contact is keyed by (body a, body b, static shape, ordinal within the
 // pair); the final Lemke basis of its unknowns is reused next step, and with
 // ConvexSolver::active_set_newton the convex solve's final active states (λn > 0, λt at
@@ -76,6 +78,17 @@ struct SimulatorSettings {
   /// slip out (31.8 m in 200 steps; 9e-7 m at 10⁵).
   ConvexFormulation convex_formulation = ConvexFormulation::automatic;
   bool post_stabilization = true;
+  /// Post-stabilization passes (≥ 1). The first projects on the step's contacts with the
+  /// linearized gap φ + Δt·Jn v⁺; each further pass re-detects contacts at the projected
+  /// positions and projects again on their true gaps where an overlap still exceeds the
+  /// slop (a nonlinear projection: rotating polygons overlap through features that the
+  /// linearization did not see), stopping early once none does. Largest start-of-step
+  /// overlap while a pile drops (300 steps, one run each): convex 200 bodies 11.0 mm with 1
+  /// pass, 2.1 / 3.4 / 0.2 mm with 2 / 3 / 5; 500 bodies 12.3 → 1.4 mm with 5; LCP 100 bodies
+  /// 8.5 → 0.1 mm with 5; CPU per step within ±10%. The default stays 1: with 5, the data
+  /// that the learning tests generate from simulated piles change (more contacts end at
+  /// exactly −slop, next to the gap term's kink), which those tests have not been re-measured on.
+  int post_stabilization_passes = 1;
   bool warm_start = true;
   int threads = 0;           ///< OpenMP threads over islands; 0 = OpenMP's default
   /// Convex model: keep each island's phase solvers between steps and update them in place
@@ -180,6 +193,9 @@ class Simulator {
   };
   std::vector<ContactKey> contact_keys() const;
   void project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats);
+  /// One further post-stabilization pass on the contacts at the current positions; false
+  /// when no overlap exceeds the slop (nothing done).
+  bool project_overlaps(StepStats& stats);
 
   World world_;
   SimulatorSettings settings_;
