@@ -21,33 +21,46 @@ import statistics
 from collections import defaultdict
 
 
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--csv", action="append", help="CSV of run_learning_curves (repeat to merge runs)")
-    ap.add_argument("--scene-csv", action="append", default=[], help="CSV of run_learning_curves_scene (repeatable)")
-    a = ap.parse_args()
-    paths = a.csv or ["bench/results/learning_curves.csv"]
+def load_runs(paths, key_fields):
+    """Rows of the CSVs grouped by key (key_fields' values) and training size, keys in order of
+    first appearance."""
     runs = defaultdict(lambda: defaultdict(list))
     order = []
     for path in paths:
         with open(path, newline="") as f:
             for r in csv.DictReader(f):
-                key = (r["param"], r["method"])
+                key = tuple(r[k] for k in key_fields)
                 if key not in runs:
                     order.append(key)
                 runs[key][int(r["samples"])].append(r)
+    return runs, order
+
+
+def summary(by_n):
+    """Sizes, test errors per size, the smallest N whose median (med) and largest (every) error
+    is <= 1%, the reporting N (1,000 or the largest run) and the mean mode error there."""
+    sizes = sorted(by_n)
+    errs = {n: [float(r["test_error"]) for r in by_n[n]] for n in sizes}
+    med = next((str(n) for n in sizes if statistics.median(errs[n]) <= 0.01), "> %d" % sizes[-1])
+    every = next((str(n) for n in sizes if max(errs[n]) <= 0.01), "> %d" % sizes[-1])
+    n = 1000 if 1000 in by_n else sizes[-1]
+    mode = statistics.mean(float(r["mode_error"]) for r in by_n[n])
+    return sizes, errs, med, every, n, mode
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--csv", action="append", help="CSV of run_learning_curves (repeat to merge runs)")
+    ap.add_argument("--scene-csv", action="append", default=[], help="CSV of run_learning_curves_scene (repeatable)")
+    a = ap.parse_args()
+    runs, order = load_runs(a.csv or ["bench/results/learning_curves.csv"], ("param", "method"))
     print("| parameterization | loss | N for median error ≤ 1% | N for every seed ≤ 1% | "
           "median error at N = 1,000 | mode error at N = 1,000 | RMS v̂⁺ where it truly sticks (μmg/m), N = 1,000 | "
           "failed evaluations in training, N = 1,000 | median error (mode error) at the largest N |")
     print("|---|---|---|---|---|---|---|---|---|")
     for key in order:
         by_n = runs[key]
-        sizes = sorted(by_n)
-        errs = {n: [float(r["test_error"]) for r in by_n[n]] for n in sizes}
-        med = next((str(n) for n in sizes if statistics.median(errs[n]) <= 0.01), "> %d" % sizes[-1])
-        every = next((str(n) for n in sizes if max(errs[n]) <= 0.01), "> %d" % sizes[-1])
-        n = 1000 if 1000 in by_n else sizes[-1]
-        mode = statistics.mean(float(r["mode_error"]) for r in by_n[n])
+        sizes, errs, med, every, n, mode = summary(by_n)
         failed = sum(int(r["train_failed"]) for r in by_n[n])
         stick = statistics.median(float(r["stick_speed"]) for r in by_n[n])
         last = sizes[-1]
@@ -61,15 +74,7 @@ def main():
 
 
 def scene_table(paths):
-    runs = defaultdict(lambda: defaultdict(list))
-    order = []
-    for path in paths:
-        with open(path, newline="") as f:
-            for r in csv.DictReader(f):
-                key = (r["scene"], r["param"], r["method"])
-                if key not in runs:
-                    order.append(key)
-                runs[key][int(r["samples"])].append(r)
+    runs, order = load_runs(paths, ("scene", "param", "method"))
     print()
     print("Polygon and 30-body pile (bench/run_learning_curves_scene; loss `relaxed` = relaxed step loss by "
           "Adam, `relaxed/lbfgs` by L-BFGS; N counts transitions of the whole scene):")
@@ -79,12 +84,7 @@ def scene_table(paths):
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for key in order:
         by_n = runs[key]
-        sizes = sorted(by_n)
-        errs = {n: [float(r["test_error"]) for r in by_n[n]] for n in sizes}
-        med = next((str(n) for n in sizes if statistics.median(errs[n]) <= 0.01), "> %d" % sizes[-1])
-        every = next((str(n) for n in sizes if max(errs[n]) <= 0.01), "> %d" % sizes[-1])
-        n = 1000 if 1000 in by_n else sizes[-1]
-        mode = statistics.mean(float(r["mode_error"]) for r in by_n[n])
+        sizes, errs, med, every, n, mode = summary(by_n)
         print("| %s | %s | %s | %d | %s | %s | %d | %.3g | %.3g | %d | %d |" % (
             key[0], key[1], key[2], len(by_n[n]), med, every, n, statistics.median(errs[n]), mode,
             sum(int(r["failed"]) for r in by_n[n]), sum(int(r["train_failed"]) for r in by_n[n])))
