@@ -10,8 +10,10 @@ with M the block's LCP matrix (m = 1), P = [1, −1, 0], weights a1 = a2 = 1, a3
 ε = 1e-3. Each sample has its own v* and target x̄ (so its own h and row bounds); the loss is
 Σ wᵀx over the batch, and gradients are taken for h, the row bounds and the values of H.
 
-- lcprelax: lcprelax.torch.QpLayer (sparse interior point in C++, OpenMP over samples,
-  backward = one adjoint solve with each sample's final factorization), eps_abs = 1e-9.
+- lcprelax: lcprelax.torch.QpLayer (interior point in C++, OpenMP over samples, backward =
+  one adjoint solve with each sample's final factorization), eps_abs = 1e-9, with each
+  engine: "dense" (DenseQpSolver, the default for a problem this small) and "sparse"
+  (QpSolver).
 - reference: written here, dense and batched in PyTorch: a Mehrotra predictor-corrector
   interior point on all B problems at once (torch.linalg.cholesky / cholesky_solve of the
   9×9 normal matrices H + Cᵀ(Z/S)C, every bound as a row of C; a sample stops moving once
@@ -172,6 +174,7 @@ def main():
     ap.add_argument("--csv", help="write the table as CSV here")
     ap.add_argument("--batches", default="1,64,1024")
     ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--engines", default="dense,sparse")
     args = ap.parse_args()
     H, G = relaxed_block_qp()
     Hu = sp.csc_matrix(np.triu(H))
@@ -183,51 +186,52 @@ def main():
         h_np, l_np = samples(B, np.random.default_rng(B))
         for threads in (int(t) for t in args.threads.split(",")):
             torch.set_num_threads(threads)
-            tight = QpLayer(Hu, G=sp.csc_matrix(G), threads=threads, eps_abs=AGREE_TOL)
-            layer = QpLayer(Hu, G=sp.csc_matrix(G), threads=threads, eps_abs=1e-9)
-            Hv = torch.tensor(layer.P_pattern.data, requires_grad=True)
-            h = torch.tensor(h_np, requires_grad=True)
-            l = torch.tensor(l_np, requires_grad=True)
-            xl_t = torch.tensor(xl)
-            Hd = torch.tensor(H).unsqueeze(0).requires_grad_(True)
-            d_pad = torch.zeros(B, 6, dtype=torch.float64)
+            for engine in args.engines.split(","):
+                tight = QpLayer(Hu, G=sp.csc_matrix(G), threads=threads, engine=engine, eps_abs=AGREE_TOL)
+                layer = QpLayer(Hu, G=sp.csc_matrix(G), threads=threads, engine=engine, eps_abs=1e-9)
+                Hv = torch.tensor(layer.P_pattern.data, requires_grad=True)
+                h = torch.tensor(h_np, requires_grad=True)
+                l = torch.tensor(l_np, requires_grad=True)
+                xl_t = torch.tensor(xl)
+                Hd = torch.tensor(H).unsqueeze(0).requires_grad_(True)
+                d_pad = torch.zeros(B, 6, dtype=torch.float64)
 
-            def run_lcprelax(qp_layer=layer):
-                Hv.grad = h.grad = l.grad = None
-                x = qp_layer(h, P=Hv, l=l, xl=xl_t)
-                (x * w).sum().backward()
-                return x
+                def run_lcprelax(qp_layer=layer):
+                    Hv.grad = h.grad = l.grad = None
+                    x = qp_layer(h, P=Hv, l=l, xl=xl_t)
+                    (x * w).sum().backward()
+                    return x
 
-            def run_reference():
-                Hd.grad = h.grad = l.grad = None
-                d = torch.cat([l, d_pad], 1)
-                x = ReferenceQp.apply(Hd, h, d, C)
-                (x * w).sum().backward()
-                return x
+                def run_reference():
+                    Hd.grad = h.grad = l.grad = None
+                    d = torch.cat([l, d_pad], 1)
+                    x = ReferenceQp.apply(Hd, h, d, C)
+                    (x * w).sum().backward()
+                    return x
 
-            ReferenceQp.tol = AGREE_TOL
-            x1 = run_lcprelax(tight).detach()
-            gh1, gl1 = h.grad.clone(), l.grad.clone()
-            x2 = run_reference().detach()
-            gh2, gl2 = h.grad.clone(), l.grad.clone()
-            ReferenceQp.tol = 1e-9
-            agree_x = (x1 - x2).abs().max().item()
-            scale = max(gh2.abs().max().item(), gl2.abs().max().item())
-            per_sample = torch.maximum((gh1 - gh2).abs().max(1).values, (gl1 - gl2).abs().max(1).values) / scale
-            agree_g = per_sample.median().item()
-            degenerate = int((per_sample > 1e-6).sum().item())  # weakly active constraints: one-sided
-            t1, t2 = timed(run_lcprelax) / B, timed(run_reference) / B
-            rows.append((B, threads, t1, t2, t2 / t1, agree_x, agree_g, degenerate))
-            print(f"B={B:5d} threads={threads}: lcprelax {t1 * 1e6:9.2f} us/sample, reference {t2 * 1e6:9.2f} "
-                  f"us/sample, reference/lcprelax {t2 / t1:6.2f}, |dx| {agree_x:.1e}, median |dgrad|/|grad| {agree_g:.1e} "
-                  f"({degenerate} of {B} samples above 1e-6)",
-                  flush=True)
+                ReferenceQp.tol = AGREE_TOL
+                x1 = run_lcprelax(tight).detach()
+                gh1, gl1 = h.grad.clone(), l.grad.clone()
+                x2 = run_reference().detach()
+                gh2, gl2 = h.grad.clone(), l.grad.clone()
+                ReferenceQp.tol = 1e-9
+                agree_x = (x1 - x2).abs().max().item()
+                scale = max(gh2.abs().max().item(), gl2.abs().max().item())
+                per_sample = torch.maximum((gh1 - gh2).abs().max(1).values, (gl1 - gl2).abs().max(1).values) / scale
+                agree_g = per_sample.median().item()
+                degenerate = int((per_sample > 1e-6).sum().item())  # weakly active constraints: one-sided
+                t1, t2 = timed(run_lcprelax) / B, timed(run_reference) / B
+                rows.append((B, threads, engine, t1, t2, t2 / t1, agree_x, agree_g, degenerate))
+                print(f"B={B:5d} threads={threads} engine={engine:6s}: lcprelax {t1 * 1e6:9.2f} us/sample, reference {t2 * 1e6:9.2f} "
+                      f"us/sample, reference/lcprelax {t2 / t1:6.2f}, |dx| {agree_x:.1e}, median |dgrad|/|grad| {agree_g:.1e} "
+                      f"({degenerate} of {B} samples above 1e-6)",
+                      flush=True)
     if args.csv:
         with open(args.csv, "w") as f:
-            f.write("batch,threads,lcprelax_us_per_sample,reference_us_per_sample,reference_over_lcprelax,"
+            f.write("batch,threads,engine,lcprelax_us_per_sample,reference_us_per_sample,reference_over_lcprelax,"
                     "max_abs_x_difference_at_1e-11,median_gradient_difference_relative_at_1e-11,samples_gradient_difference_above_1e-6\n")
             for r in rows:
-                f.write(f"{r[0]},{r[1]},{r[2] * 1e6:.3f},{r[3] * 1e6:.3f},{r[4]:.3f},{r[5]:.2e},{r[6]:.2e},{r[7]}\n")
+                f.write(f"{r[0]},{r[1]},{r[2]},{r[3] * 1e6:.3f},{r[4] * 1e6:.3f},{r[5]:.3f},{r[6]:.2e},{r[7]:.2e},{r[8]}\n")
 
 
 if __name__ == "__main__":

@@ -297,12 +297,14 @@ def learn_threads(results):
 def qp_layer(results):
     name = "qp_layer.csv"
     rows = read_csv(results, name)
-    big = only(rows, name, batch="1024", threads="2")
-    one = only(rows, name, batch="1024", threads="1")
+    big = only(rows, name, batch="1024", threads="2", engine="dense")
+    one = only(rows, name, batch="1024", threads="1", engine="dense")
+    sparse = only(rows, name, batch="1024", threads="2", engine="sparse")
     ratio = float(big["reference_over_lcprelax"])
     return [("PyTorch `QpLayer` forward + backward per sample, relaxed block QP (9 variables), batch 1,024, "
              "against a dense batched PyTorch interior point",
-             f"2 threads: lcprelax {g(big['lcprelax_us_per_sample'])} µs, reference "
+             f"2 threads: lcprelax {g(big['lcprelax_us_per_sample'])} µs (dense engine, the default here; "
+             f"sparse engine {g(sparse['lcprelax_us_per_sample'])} µs), reference "
              f"{g(big['reference_us_per_sample'])} µs (reference / lcprelax {g(ratio)}); 1 thread: "
              f"{g(one['lcprelax_us_per_sample'])} µs vs {g(one['reference_us_per_sample'])} µs",
              f"≥ {goal(TARGET_QP_LAYER)}: {verdict(ratio >= TARGET_QP_LAYER)}", src(name))]

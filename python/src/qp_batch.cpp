@@ -10,12 +10,16 @@
 // (`P_pattern.data`, column by column, rows sorted, duplicates summed); None keeps the
 // pattern matrix's own values. Vectors: None means q = 0 (q is required), l, xl = −∞,
 // u, xu = +∞; b is required when A has rows. Batched arguments: batch.hpp.
-// Every sample is solved the way QpSolver solves it (setup() the first time, update()
-// afterwards: the values equal those of a fresh setup, docs of QpSolver::update), so its
-// result equals, bit for bit, that of a lone QpSolver with the same settings.
+// engine: "sparse" solves every sample with QpSolver, "dense" with DenseQpSolver (tiny
+// problems, kkt/dense_qp_solver.hpp: hands a sample it cannot solve to QpSolver), "auto"
+// (default) picks dense when DenseQpSolver::suits the pattern. Every sample is solved the way
+// its solver solves it alone (setup() the first time, update() afterwards: the values equal
+// those of a fresh setup), so its result equals, bit for bit, that of a lone solver of the
+// same kind with the same settings.
 // generation counts solve() calls; backward() applies to the latest one.
 #include "batch.hpp"
 
+#include <lcprelax/kkt/dense_qp_solver.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 
 #include <limits>
@@ -37,8 +41,11 @@ struct PyQpBatchResult {
 
 class PyQpBatch {
  public:
-  PyQpBatch(const py::object& P, const py::object& A, const py::object& G, int threads, const QpSettings& s)
+  PyQpBatch(const py::object& P, const py::object& A, const py::object& G, int threads, const std::string& engine,
+            const QpSettings& s)
       : settings_(s), threads_(threads) {
+    if (engine != "auto" && engine != "dense" && engine != "sparse")
+      throw InputError("QpBatch: engine must be \"auto\", \"dense\" or \"sparse\", got \"" + engine + "\"");
     if (std::string e = s.validation_error(); !e.empty()) throw InputError("QpSettings: " + e);
     pattern_.P = to_sparse(P, "P");
     const Index n = static_cast<Index>(pattern_.P.cols());
@@ -53,6 +60,10 @@ class PyQpBatch {
     pattern_.u = Vector::Constant(pattern_.G.rows(), kInf);
     pattern_.xl = Vector::Constant(n, -kInf);
     pattern_.xu = Vector::Constant(n, kInf);
+    dense_ = engine == "dense" || (engine == "auto" && DenseQpSolver::suits(pattern_));
+    if (engine == "dense" && !DenseQpSolver::suits(pattern_))
+      throw InputError("QpBatch: engine \"dense\" is for problems with n + rows of A + 2·rows of G + 2n <= " +
+                       std::to_string(DenseQpSolver::kMaxDimension) + "; use \"sparse\" or \"auto\"");
   }
 
   PyQpBatchResult solve(const py::object& q, const py::object& P, const py::object& A, const py::object& b,
@@ -80,16 +91,19 @@ class PyQpBatch {
         fill(rq, p.q.data(), n), fill(rP, p.P.valuePtr(), nnz(p.P)), fill(rA, p.A.valuePtr(), nnz(p.A));
         fill(rb, p.b.data(), me), fill(rG, p.G.valuePtr(), nnz(p.G)), fill(rl, p.l.data(), mi);
         fill(ru, p.u.data(), mi), fill(rxl, p.xl.data(), n), fill(rxu, p.xu.data(), n);
-        QpSolver& s = *solvers_[static_cast<std::size_t>(k)];
         char& ready = set_up_[static_cast<std::size_t>(k)];
         try {
-          if (ready) {
-            s.update(p);
-          } else {
-            s.setup(p);
+          if (dense_) {
+            DenseQpSolver& s = *dense_solvers_[static_cast<std::size_t>(k)];
+            ready ? s.update(p) : s.setup(p);
             ready = 1;
+            s.solve();
+          } else {
+            QpSolver& s = *solvers_[static_cast<std::size_t>(k)];
+            ready ? s.update(p) : s.setup(p);
+            ready = 1;
+            s.solve();
           }
-          s.solve();
         } catch (...) {
           ready = 0;  // the next solve() starts this sample from setup()
           throw;
@@ -111,7 +125,7 @@ class PyQpBatch {
       throw InputError("QpBatch.backward(): batch size " + std::to_string(args.batch_size()) + ", the last solve() had " +
                        std::to_string(B));
     for (Index k = 0; k < B; ++k) {
-      const QpStatus st = solvers_[static_cast<std::size_t>(k)]->result().info.status;
+      const QpStatus st = result_of(k).info.status;
       if (!has_solution(st))
         throw std::logic_error("QpBatch.backward(): sample " + std::to_string(k) + " has status " + to_string(st) +
                                ", no solution to differentiate");
@@ -130,7 +144,8 @@ class PyQpBatch {
         const Vector gx = Eigen::Map<const Vector>(rx.row(k), n);
         const Vector gy = ry.given() ? Vector(Eigen::Map<const Vector>(ry.row(k), me)) : Vector();
         const Vector gz = rz.given() ? Vector(Eigen::Map<const Vector>(rz.row(k), mi)) : Vector();
-        const QpGradient g = solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz);
+        const QpGradient g = dense_ ? dense_solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz)
+                                    : solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz);
         if (nnz(g.dP) != nP || nnz(g.dA) != nA || nnz(g.dG) != nG)
           throw std::runtime_error("QpBatch.backward(): a gradient left the input's sparsity pattern");
         copy_row(g.dP.valuePtr(), nP, pP + k * nP), copy_or_nan(g.dq, n, pq + k * n);
@@ -153,17 +168,28 @@ class PyQpBatch {
   Index batch_size() const { return static_cast<Index>(problems_.size()); }
   long long generation() const { return generation_; }
   int threads() const { return threads_; }
+  std::string engine() const { return dense_ ? "dense" : "sparse"; }
   const QpProblem& pattern() const { return pattern_; }
 
  private:
   static Index nnz(const SparseMatrix& M) { return static_cast<Index>(M.nonZeros()); }
+
+  const QpResult& result_of(Index k) const {
+    return dense_ ? dense_solvers_[static_cast<std::size_t>(k)]->result() : solvers_[static_cast<std::size_t>(k)]->result();
+  }
 
   // B samples, each starting from the pattern problem; a new B restarts every sample.
   void resize(Index B) {
     if (static_cast<Index>(problems_.size()) == B) return;
     problems_.assign(static_cast<std::size_t>(B), pattern_);
     solvers_.clear();
-    for (Index k = 0; k < B; ++k) solvers_.push_back(std::make_unique<QpSolver>(settings_));
+    dense_solvers_.clear();
+    for (Index k = 0; k < B; ++k) {
+      if (dense_)
+        dense_solvers_.push_back(std::make_unique<DenseQpSolver>(settings_));
+      else
+        solvers_.push_back(std::make_unique<QpSolver>(settings_));
+    }
     set_up_.assign(static_cast<std::size_t>(B), 0);
     solved_ = false;
   }
@@ -177,7 +203,7 @@ class PyQpBatch {
     r.iterations = py::array_t<int>(B), r.has_solution = py::array_t<bool>(B);
     r.generation = generation_;
     for (Index k = 0; k < B; ++k) {
-      const QpResult& s = solvers_[static_cast<std::size_t>(k)]->result();
+      const QpResult& s = result_of(k);
       copy_or_nan(s.x, n, r.x.mutable_data() + k * n), copy_or_nan(s.y, me, r.y.mutable_data() + k * me);
       copy_or_nan(s.z, mi, r.z.mutable_data() + k * mi), copy_or_nan(s.z_bounds, n, r.z_bounds.mutable_data() + k * n);
       r.objective.mutable_data()[k] = s.info.objective;
@@ -196,6 +222,8 @@ class PyQpBatch {
   QpProblem pattern_;
   std::vector<QpProblem> problems_;
   std::vector<std::unique_ptr<QpSolver>> solvers_;
+  std::vector<std::unique_ptr<DenseQpSolver>> dense_solvers_;
+  bool dense_ = false;
   std::vector<char> set_up_;
   bool solved_ = false;
   long long generation_ = 0;
@@ -221,14 +249,16 @@ void bind_qp_batch(py::module_& m) {
                         "B QPs with one sparsity pattern, solved in parallel (OpenMP); each sample keeps its\n"
                         "factorization for backward(). See docs/python.md.")
       .def(py::init([](const py::object& P, const py::object& A, const py::object& G, int threads,
-                       const py::kwargs& kw) {
+                       const std::string& engine, const py::kwargs& kw) {
              QpSettings s;
              apply_settings(s, qp_fields(), kw, "QpBatch()");
-             return std::make_unique<PyQpBatch>(P, A, G, threads, s);
+             return std::make_unique<PyQpBatch>(P, A, G, threads, engine, s);
            }),
            py::arg("P"), py::arg("A") = py::none(), py::arg("G") = py::none(), py::kw_only(), py::arg("threads") = 0,
-           "QpBatch(P, A=None, G=None, *, threads=0, **settings): the patterns (scipy.sparse; P its UPPER\n"
-           "triangle) and QpSettings keywords; threads <= 0 means OpenMP's default")
+           py::arg("engine") = "auto",
+           "QpBatch(P, A=None, G=None, *, threads=0, engine=\"auto\", **settings): the patterns (scipy.sparse;\n"
+           "P its UPPER triangle) and QpSettings keywords; threads <= 0 means OpenMP's default; engine\n"
+           "\"sparse\" (QpSolver), \"dense\" (DenseQpSolver, tiny problems) or \"auto\" (dense when it suits)")
       .def("solve", &PyQpBatch::solve, py::arg("q"), py::kw_only(), py::arg("P") = py::none(),
            py::arg("A") = py::none(), py::arg("b") = py::none(), py::arg("G") = py::none(), py::arg("l") = py::none(),
            py::arg("u") = py::none(), py::arg("xl") = py::none(), py::arg("xu") = py::none(),
@@ -246,6 +276,7 @@ void bind_qp_batch(py::module_& m) {
       .def_property_readonly("batch_size", &PyQpBatch::batch_size, "B of the last solve (0 before)")
       .def_property_readonly("generation", &PyQpBatch::generation, "number of solve() calls so far")
       .def_property_readonly("threads", &PyQpBatch::threads)
+      .def_property_readonly("engine", &PyQpBatch::engine, "\"dense\" or \"sparse\": the solver of every sample")
       .def_property_readonly("P_pattern", [](const PyQpBatch& b) { return to_scipy(b.pattern().P); })
       .def_property_readonly("A_pattern", [](const PyQpBatch& b) { return to_scipy(b.pattern().A); })
       .def_property_readonly("G_pattern", [](const PyQpBatch& b) { return to_scipy(b.pattern().G); });

@@ -32,8 +32,9 @@ def _layer(small_qp, **kw):
     return QpLayer(small_qp["P"], small_qp["A"], small_qp["G"], **kw)
 
 
-def test_gradcheck_every_input_batched_and_shared(small_qp):
-    layer = _layer(small_qp, **TIGHT)
+@pytest.mark.parametrize("engine", ["dense", "sparse"])
+def test_gradcheck_every_input_batched_and_shared(small_qp, engine):
+    layer = _layer(small_qp, engine=engine, **TIGHT)
     q = _t(_batch_q(small_qp, 3))                      # batched (3, n)
     Pv = _t(layer.P_pattern.data)                      # shared values of P's entries
     Av = _t(layer.A_pattern.data)
@@ -66,7 +67,7 @@ def test_results_equal_the_single_solver_bitwise_and_over_threads(small_qp):
     fixed = {k: torch.tensor(small_qp[k], dtype=torch.float64) for k in ("b", "l", "u", "xl", "xu")}
     outs = []
     for threads in (1, 2):
-        layer = _layer(small_qp, threads=threads, multipliers=True)
+        layer = _layer(small_qp, threads=threads, multipliers=True, engine="sparse")
         outs.append([t.detach().numpy().copy() for t in layer(torch.tensor(qs), **fixed)])
         outs.append([t.detach().numpy().copy() for t in layer(torch.tensor(qs), **fixed)])  # update() path
     for o in outs[1:]:
@@ -81,7 +82,7 @@ def test_results_equal_the_single_solver_bitwise_and_over_threads(small_qp):
 
 
 def test_backward_equals_the_single_solver_and_survives_a_second_forward(small_qp):
-    layer = _layer(small_qp)
+    layer = _layer(small_qp, engine="sparse")
     fixed = {k: torch.tensor(small_qp[k], dtype=torch.float64) for k in ("b", "l", "u", "xl", "xu")}
     q1 = _t(_batch_q(small_qp, 2, seed=3))
     x1 = layer(q1, **fixed)
@@ -94,6 +95,28 @@ def test_backward_equals_the_single_solver_and_survives_a_second_forward(small_q
                 small_qp["u"], small_qp["xl"], small_qp["xu"])
         s.solve()
         assert np.array_equal(s.backward(w.numpy()).dq, q1.grad[k].numpy())
+
+
+def test_dense_engine_is_the_default_for_small_problems_and_agrees_with_qpsolver(small_qp):
+    assert _layer(small_qp).engine.engine == "dense"
+    assert _layer(small_qp, engine="sparse").engine.engine == "sparse"
+    with pytest.raises(lcprelax.InputError, match="engine"):
+        _layer(small_qp, engine="fast")
+    qs = _batch_q(small_qp, 5, seed=5)
+    fixed = {k: torch.tensor(small_qp[k], dtype=torch.float64) for k in ("b", "l", "u", "xl", "xu")}
+    outs = []
+    for threads in (1, 2):
+        layer = _layer(small_qp, threads=threads, multipliers=True, eps_abs=1e-11)
+        outs.append([t.detach().numpy().copy() for t in layer(torch.tensor(qs), **fixed)])
+    for a, b in zip(outs[0], outs[1]):
+        assert np.array_equal(a, b)  # the same for every thread count
+    s = lcprelax.QpSolver(eps_abs=1e-11)
+    for k, qk in enumerate(qs):
+        s.setup(small_qp["P"], qk, small_qp["A"], small_qp["b"], small_qp["G"], small_qp["l"], small_qp["u"],
+                small_qp["xl"], small_qp["xu"])
+        r = s.solve()
+        assert np.abs(r.x - outs[0][0][k]).max() < 1e-8
+        assert np.abs(r.z - outs[0][2][k]).max() < 1e-7
 
 
 def test_unbatched_call_returns_unbatched_tensors(small_qp):

@@ -1,0 +1,406 @@
+// DenseQpSolver: setup, the Mehrotra predictor-corrector iteration on dense normal
+// equations, the unscaled termination test and the hand-over to QpSolver (method and
+// conventions: dense_qp_solver.hpp).
+#include "dense_qp_impl.hpp"
+#include "vector_norms.hpp"
+
+#include <lcprelax/core/errors.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace lcprelax {
+namespace dense_qp_detail {
+
+constexpr int kDenseMaxIterations = 60;  // then QpSolver takes over
+constexpr double kStepToBoundary = 0.99;
+constexpr int kRegRaises = 8;
+
+double dist_to_box(double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); }
+
+double support(double z, double lo, double hi) {
+  if (z > 0) return hi * z;
+  if (z < 0) return lo * z;
+  return 0.0;
+}
+
+
+// Largest α ≤ 1 with v + α dv ≥ 0.
+double max_step(const Vector& v, const Vector& dv) {
+  double a = 1.0;
+  for (Index k = 0; k < v.size(); ++k)
+    if (dv(k) < 0) a = std::min(a, -v(k) / dv(k));
+  return a;
+}
+
+// Class of a row or bound: 0 absent, 1 lower, 2 upper, 3 both sides, 4 equality.
+char side_class(double lo, double up) {
+  if (lo == up) return 4;
+  return static_cast<char>((std::isfinite(lo) ? 1 : 0) + (std::isfinite(up) ? 2 : 0));
+}
+
+}  // namespace dense_qp_detail
+
+using namespace dense_qp_detail;
+
+bool DenseQpSolver::Impl::same_classes(const QpProblem& p) const {
+  if (row_class.size() != static_cast<std::size_t>(p.num_inequalities()) ||
+      var_class.size() != static_cast<std::size_t>(p.num_variables()))
+    return false;
+  for (Index i = 0; i < p.num_inequalities(); ++i)
+    if (row_class[static_cast<std::size_t>(i)] != side_class(p.l(i), p.u(i))) return false;
+  for (Index j = 0; j < p.num_variables(); ++j)
+    if (var_class[static_cast<std::size_t>(j)] != side_class(p.xl(j), p.xu(j))) return false;
+  return true;
+}
+
+void DenseQpSolver::Impl::load(const QpProblem& p) {
+  problem = p;
+  n = p.num_variables();
+  eq_rows.clear(), sides.clear(), gi_source.clear(), row_class.clear(), var_class.clear();
+  for (Index i = 0; i < p.num_equalities(); ++i) eq_rows.push_back({EqSource::a_row, i});
+  for (Index i = 0; i < p.num_inequalities(); ++i) {
+    const char c = side_class(p.l(i), p.u(i));
+    row_class.push_back(c);
+    if (c == 4) {
+      eq_rows.push_back({EqSource::g_row, i});
+      continue;
+    }
+    if (c == 0) continue;
+    const Index r = static_cast<Index>(gi_source.size());
+    gi_source.push_back(i);
+    if (c & 1) sides.push_back({true, i, r, 1.0});
+    if (c & 2) sides.push_back({true, i, r, -1.0});
+  }
+  for (Index j = 0; j < n; ++j) {
+    const char c = side_class(p.xl(j), p.xu(j));
+    var_class.push_back(c);
+    if (c == 4) {
+      eq_rows.push_back({EqSource::fixed_variable, j});
+      continue;
+    }
+    if (c & 1) sides.push_back({false, j, 0, 1.0});
+    if (c & 2) sides.push_back({false, j, 0, -1.0});
+  }
+  me = static_cast<Index>(eq_rows.size());
+  mc = static_cast<Index>(sides.size());
+  P.setZero(n, n);
+  A.setZero(p.num_equalities(), n);
+  G.setZero(p.num_inequalities(), n);
+  Ae.setZero(me, n);
+  Gi.setZero(static_cast<Index>(gi_source.size()), n);
+  be.setZero(me);
+  d.setZero(mc);
+  size_work();
+  fill_values();
+}
+
+void DenseQpSolver::Impl::fill_values() {
+  const QpProblem& p = problem;
+  P.setZero();
+  for (Index j = 0; j < p.P.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(p.P, j); it; ++it) {
+      P(it.row(), j) += it.value();
+      if (it.row() != j) P(j, it.row()) += it.value();
+    }
+  A = p.A;
+  G = p.G;
+  for (Index r = 0; r < me; ++r) {
+    const EqRow& e = eq_rows[static_cast<std::size_t>(r)];
+    switch (e.source) {
+      case EqSource::a_row: Ae.row(r) = A.row(e.index), be(r) = p.b(e.index); break;
+      case EqSource::g_row: Ae.row(r) = G.row(e.index), be(r) = p.l(e.index); break;
+      case EqSource::fixed_variable: Ae.row(r).setZero(), Ae(r, e.index) = 1.0, be(r) = p.xl(e.index); break;
+    }
+  }
+  for (Index r = 0; r < Gi.rows(); ++r) Gi.row(r) = G.row(gi_source[static_cast<std::size_t>(r)]);
+  for (Index k = 0; k < mc; ++k) {
+    const Side& sd = sides[static_cast<std::size_t>(k)];
+    const double lo = sd.on_g_row ? p.l(sd.index) : p.xl(sd.index);
+    const double up = sd.on_g_row ? p.u(sd.index) : p.xu(sd.index);
+    d(k) = sd.sign > 0 ? lo : -up;
+  }
+  reg_base = 1e-12 * std::max(1.0, n > 0 ? P.diagonal().cwiseAbs().maxCoeff() : 0.0);
+}
+
+void DenseQpSolver::Impl::size_work() {
+  for (Vector* v : {&x, &rd, &res_n, &dx, &f, &tmp_n}) v->setZero(n);
+  for (Vector* v : {&y, &re, &dy, &tmp_me}) v->setZero(me);
+  for (Vector* v : {&s, &lam, &rp, &rc, &ds, &dlam, &w, &cx}) v->setZero(mc);
+  Gx.setZero(Gi.rows());
+  Drow.setZero(Gi.rows());
+  K.setZero(n, n);
+  W.setZero(n, me);
+  S.setZero(me, me);
+  result.x.setZero(n);
+  result.y.setZero(problem.num_equalities());
+  result.z.setZero(problem.num_inequalities());
+  result.z_bounds.setZero(n);
+}
+
+void DenseQpSolver::Impl::apply_C(const Vector& v, Vector& out) {
+  Gx.noalias() = Gi * v;
+  for (Index k = 0; k < mc; ++k) {
+    const Side& sd = sides[static_cast<std::size_t>(k)];
+    out(k) = sd.sign * (sd.on_g_row ? Gx(sd.gi_row) : v(sd.index));
+  }
+}
+
+void DenseQpSolver::Impl::apply_Ct(const Vector& v, Vector& out) {
+  Drow.setZero();  // scratch: per Gi row, Σ sign·v
+  out.setZero();
+  for (Index k = 0; k < mc; ++k) {
+    const Side& sd = sides[static_cast<std::size_t>(k)];
+    if (sd.on_g_row)
+      Drow(sd.gi_row) += sd.sign * v(k);
+    else
+      out(sd.index) += sd.sign * v(k);
+  }
+  out.noalias() += Gi.transpose() * Drow;
+}
+
+bool DenseQpSolver::Impl::factorize(const Vector& dk) {
+  double reg = reg_base;
+  for (int attempt = 0; attempt <= kRegRaises; ++attempt, reg *= 10.0) {
+    Drow.setZero();
+    K = P;
+    for (Index k = 0; k < mc; ++k) {
+      const Side& sd = sides[static_cast<std::size_t>(k)];
+      if (sd.on_g_row)
+        Drow(sd.gi_row) += dk(k);
+      else
+        K(sd.index, sd.index) += dk(k);
+    }
+    for (Index r = 0; r < Gi.rows(); ++r)
+      if (Drow(r) != 0.0) K.noalias() += (Drow(r) * Gi.row(r).transpose()) * Gi.row(r);
+    K.diagonal().array() += reg;
+    if (!llt_K.compute(K)) continue;
+    if (me == 0) return true;
+    W = Ae.transpose();
+    llt_K.solve_lower_columns(W);
+    S.noalias() = W.transpose() * W;
+    S.diagonal().array() += reg;
+    if (llt_S.compute(S)) return true;
+  }
+  return false;
+}
+
+void DenseQpSolver::Impl::solve_reduced(const Vector& rhs_x, const Vector& rhs_e, Vector& out_x, Vector& out_y) {
+  f = rhs_x;
+  if (me > 0) {
+    // S y = rhs_e − Ae K⁻¹ f, then x = K⁻¹(f + Aeᵀ y)  (K x − Aeᵀ y = f, Ae x = rhs_e).
+    tmp_n = f;
+    llt_K.solve_in_place(tmp_n);
+    tmp_me.noalias() = Ae * tmp_n;
+    tmp_me = rhs_e - tmp_me;
+    out_y = tmp_me;
+    llt_S.solve_in_place(out_y);
+    f.noalias() += Ae.transpose() * out_y;
+  }
+  out_x = f;
+  llt_K.solve_in_place(out_x);
+}
+
+bool DenseQpSolver::Impl::fill_result_and_check() {
+  const QpProblem& p = problem;
+  QpResult& r = result;
+  r.x = x;
+  r.z.setZero(), r.z_bounds.setZero();
+  for (Index k = 0; k < me; ++k) {
+    const EqRow& e = eq_rows[static_cast<std::size_t>(k)];
+    switch (e.source) {
+      case EqSource::a_row: r.y(e.index) = -y(k); break;
+      case EqSource::g_row: r.z(e.index) = -y(k); break;
+      case EqSource::fixed_variable: r.z_bounds(e.index) = -y(k); break;
+    }
+  }
+  for (Index k = 0; k < mc; ++k) {
+    const Side& sd = sides[static_cast<std::size_t>(k)];
+    (sd.on_g_row ? r.z(sd.index) : r.z_bounds(sd.index)) -= sd.sign * lam(k);
+  }
+  // Unscaled residuals (qp_settings.hpp), on the dense copies.
+  tmp_n.noalias() = P * x;  // Px
+  double primal = 0.0, scale_p = detail::inf_norm(x);
+  for (Index i = 0; i < A.rows(); ++i) {
+    const double ax = A.row(i).dot(x);
+    primal = std::max(primal, std::abs(ax - p.b(i)));
+    scale_p = std::max({scale_p, std::abs(ax), std::abs(p.b(i))});
+  }
+  for (Index i = 0; i < G.rows(); ++i) {
+    const double gx = G.row(i).dot(x);
+    primal = std::max(primal, dist_to_box(gx, p.l(i), p.u(i)));
+    scale_p = std::max(scale_p, std::abs(gx));
+  }
+  for (Index j = 0; j < n; ++j) primal = std::max(primal, dist_to_box(x(j), p.xl(j), p.xu(j)));
+  Vector& rdual = res_n;
+  rdual = tmp_n + p.q + r.z_bounds;  // dual residual vector, built term by term for its scale
+  double scale_d = std::max({detail::inf_norm(tmp_n), detail::inf_norm(p.q), detail::inf_norm(r.z_bounds)});
+  if (A.rows() > 0) {
+    f.noalias() = A.transpose() * r.y;
+    rdual += f, scale_d = std::max(scale_d, detail::inf_norm(f));
+  }
+  if (G.rows() > 0) {
+    f.noalias() = G.transpose() * r.z;
+    rdual += f, scale_d = std::max(scale_d, detail::inf_norm(f));
+  }
+  const double dual = detail::inf_norm(rdual);
+  long double sup = 0.0L, xPx = 0.0L, qx = 0.0L, by = 0.0L;
+  for (Index i = 0; i < r.z.size(); ++i) sup += support(r.z(i), p.l(i), p.u(i));
+  for (Index j = 0; j < n; ++j) {
+    sup += support(r.z_bounds(j), p.xl(j), p.xu(j));
+    xPx += static_cast<long double>(x(j)) * tmp_n(j);
+    qx += static_cast<long double>(p.q(j)) * x(j);
+  }
+  for (Index i = 0; i < r.y.size(); ++i) by += static_cast<long double>(p.b(i)) * r.y(i);
+  const double gap = static_cast<double>(std::abs(xPx + qx + by + sup));
+  const double scale_g = static_cast<double>(std::max({std::abs(xPx), std::abs(qx), std::abs(by), std::abs(sup)}));
+  r.info.primal_residual = primal, r.info.dual_residual = dual, r.info.duality_gap = gap;
+  r.info.objective = static_cast<double>(0.5L * xPx + qx) + p.r;
+  const QpSettings& st = settings;
+  return primal <= st.eps_abs + st.eps_rel * scale_p && dual <= st.eps_abs + st.eps_rel * scale_d &&
+         gap <= st.eps_abs + st.eps_rel * scale_g;
+}
+
+bool DenseQpSolver::Impl::run_dense() {
+  QpInfo& info = result.info;
+  info.iterations = 0, info.factorizations = 0;
+  factorized_at_final = false;
+  // Start: minimize ½xᵀPx + qᵀx + ½‖Cx − d‖² on Ae x = be, then s = max(Cx − d, 1), λ = 1.
+  lam.setOnes();
+  if (!factorize(lam)) return false;
+  ++info.factorizations;
+  apply_Ct(d, tmp_n);
+  rd = tmp_n - problem.q;
+  solve_reduced(rd, be, x, y);  // K x − Aeᵀ y = Cᵀd − q, Ae x = be
+  apply_C(x, cx);
+  s = (cx - d).cwiseMax(1.0);
+  const int max_iter = std::min(kDenseMaxIterations, settings.max_iter);
+  for (int it = 0;; ++it) {
+    info.iterations = it;
+    if (!x.allFinite() || !y.allFinite() || !s.allFinite() || !lam.allFinite()) return false;
+    // Residuals of Px + q − Aeᵀy − Cᵀλ = 0, Ae x = be, Cx − s = d.
+    rd.noalias() = P * x;
+    rd += problem.q;
+    if (me > 0) rd.noalias() -= Ae.transpose() * y;
+    apply_Ct(lam, tmp_n);
+    rd -= tmp_n;
+    if (me > 0) {
+      re.noalias() = Ae * x;
+      re -= be;
+    }
+    apply_C(x, cx);
+    rp = cx - s - d;
+    const double mu = mc > 0 ? s.dot(lam) / static_cast<double>(mc) : 0.0;
+    // The test on the user's residuals, once complementarity is near the tolerance (with a
+    // relative tolerance, every iteration).
+    const bool near = settings.eps_rel > 0 || static_cast<double>(mc) * mu <= 10.0 * settings.eps_abs;
+    if (near && fill_result_and_check()) {
+      // The adjoint system at the final iterate, for backward().
+      if (!factorize_adjoint()) return false;
+      ++info.factorizations;
+      factorized_at_final = true;
+      return true;
+    }
+    if (it >= max_iter) return false;
+    w = lam.cwiseQuotient(s);
+    if (!factorize(w)) return false;
+    ++info.factorizations;
+    // Direction for a complementarity target rc (λ∘s − target):
+    //   K dx − Aeᵀdy = −rd − Cᵀ S⁻¹(rc + Λ rp),  Ae dx = −re,
+    //   ds = C dx + rp,  dλ = −S⁻¹(rc + Λ ds).
+    auto direction = [&] {
+      dlam = (rc + lam.cwiseProduct(rp)).cwiseQuotient(s);
+      apply_Ct(dlam, tmp_n);
+      tmp_n = -rd - tmp_n;
+      dx = tmp_n;
+      solve_reduced(dx, -re, dx, dy);
+      apply_C(dx, ds);
+      ds += rp;
+      dlam = -(rc + lam.cwiseProduct(ds)).cwiseQuotient(s);
+    };
+    rc = s.cwiseProduct(lam);
+    direction();
+    double alpha = std::min(max_step(s, ds), max_step(lam, dlam));
+    if (mc > 0) {
+      const double mu_aff = (s + alpha * ds).dot(lam + alpha * dlam) / static_cast<double>(mc);
+      const double sigma = std::pow(mu_aff / mu, 3);
+      rc = s.cwiseProduct(lam) + ds.cwiseProduct(dlam);
+      rc.array() -= sigma * mu;
+      direction();
+      alpha = std::min(1.0, kStepToBoundary * std::min(max_step(s, ds), max_step(lam, dlam)));
+    }
+    x += alpha * dx, y += alpha * dy, s += alpha * ds, lam += alpha * dlam;
+  }
+}
+
+void DenseQpSolver::Impl::run_fallback(const char* why) {
+  if (!fallback) fallback = std::make_unique<QpSolver>(settings);
+  if (fallback_ready && fallback->can_update(problem)) {
+    fallback->update(problem);
+  } else {
+    fallback->setup(problem);
+    fallback_ready = true;
+  }
+  const int dense_iterations = result.info.iterations;
+  result = fallback->solve();
+  result.info.iterations += dense_iterations;
+  result.info.message = std::string("dense interior point ") + why + "; solved by QpSolver: " + result.info.message;
+  used_fallback = true;
+}
+
+DenseQpSolver::DenseQpSolver(QpSettings settings) : impl_(std::make_unique<Impl>()) {
+  if (std::string e = settings.validation_error(); !e.empty()) throw InputError("QpSettings: " + e);
+  impl_->settings = settings;
+}
+DenseQpSolver::~DenseQpSolver() = default;
+DenseQpSolver::DenseQpSolver(DenseQpSolver&&) noexcept = default;
+DenseQpSolver& DenseQpSolver::operator=(DenseQpSolver&&) noexcept = default;
+
+bool DenseQpSolver::suits(const QpProblem& p) {
+  return 3 * p.num_variables() + p.num_equalities() + 2 * p.num_inequalities() <= kMaxDimension;
+}
+
+void DenseQpSolver::setup(const QpProblem& problem) {
+  problem.validate();
+  impl_->load(problem);
+  impl_->has_setup = true;
+  impl_->result.info = QpInfo{};
+}
+
+void DenseQpSolver::update(const QpProblem& problem) {
+  if (!impl_->has_setup) throw InputError("DenseQpSolver::update() before setup()");
+  if (!impl_->problem.same_pattern(problem))
+    throw InputError("DenseQpSolver::update(): the sizes or sparsity pattern differ from setup()'s");
+  problem.validate();
+  if (impl_->same_classes(problem)) {
+    impl_->problem = problem;
+    impl_->fill_values();
+  } else {
+    impl_->load(problem);
+  }
+  impl_->result.info = QpInfo{};
+}
+
+const QpResult& DenseQpSolver::solve() {
+  Impl& m = *impl_;
+  if (!m.has_setup) throw InputError("DenseQpSolver::solve() before setup()");
+  const auto t0 = std::chrono::steady_clock::now();
+  m.used_fallback = false;
+  m.result.info = QpInfo{};
+  m.result.info.kkt_backend = KktBackend::dense;
+  if (m.run_dense()) {
+    m.result.info.status = QpStatus::solved;
+    m.result.info.message = "solved by the dense interior point";
+  } else {
+    m.run_fallback(m.result.info.iterations >= kDenseMaxIterations ? "did not converge" : "failed");
+  }
+  m.result.info.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return m.result;
+}
+
+const QpResult& DenseQpSolver::result() const { return impl_->result; }
+bool DenseQpSolver::used_fallback() const { return impl_->used_fallback; }
+
+}  // namespace lcprelax
