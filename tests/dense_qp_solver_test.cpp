@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 #include <limits>
 
 namespace lcprelax {
@@ -27,11 +28,17 @@ QpProblem small_problem(unsigned seed) {
   return p;
 }
 
-TEST(DenseQpSolver, SameSolutionAsQpSolver) {
+class DenseQpMethods : public ::testing::TestWithParam<DenseQpMethod> {};
+
+const char* method_message(DenseQpMethod m) {
+  return m == DenseQpMethod::active_set_first ? "solved by the dense active-set method" : "solved by the dense interior point";
+}
+
+TEST_P(DenseQpMethods, SameSolutionAsQpSolver) {
   for (unsigned seed = 1; seed <= 20; ++seed) {
     const QpProblem p = small_problem(seed);
     ASSERT_TRUE(DenseQpSolver::suits(p));
-    DenseQpSolver dense;
+    DenseQpSolver dense(QpSettings{}, GetParam());
     dense.setup(p);
     const QpResult& rd = dense.solve();
     QpSolver ref;
@@ -45,6 +52,7 @@ TEST(DenseQpSolver, SameSolutionAsQpSolver) {
     ASSERT_EQ(rr.info.status, QpStatus::solved) << "seed " << seed;
     ASSERT_EQ(rd.info.status, QpStatus::solved) << "seed " << seed << ": " << rd.info.message;
     EXPECT_FALSE(dense.used_fallback()) << "seed " << seed << ": " << rd.info.message;
+    EXPECT_EQ(rd.info.message, method_message(GetParam())) << "seed " << seed;
     EXPECT_LE(rd.info.primal_residual, 1e-9);
     EXPECT_LE(rd.info.dual_residual, 1e-9);
     EXPECT_LE(rd.info.duality_gap, 1e-9);
@@ -71,13 +79,13 @@ bool strictly_complementary(const QpProblem& p, const QpResult& r, double tol) {
 
 // ℓ = w_xᵀx* + w_yᵀy* + w_zᵀz* by central differences on every vector datum and on three
 // stored values of each of P, A and G, on the strictly complementary seeds.
-TEST(DenseQpSolver, GradientsMatchFiniteDifferences) {
+TEST_P(DenseQpMethods, GradientsMatchFiniteDifferences) {
   QpSettings tight;
   tight.eps_abs = 1e-12;  // the differences of solutions divided by 2h stay below 1e-6
   int compared = 0;
   for (unsigned seed = 1; seed <= 20; ++seed) {
     const QpProblem p0 = small_problem(seed);
-    DenseQpSolver s(tight);
+    DenseQpSolver s(tight, GetParam());
     s.setup(p0);
     if (s.solve().info.status != QpStatus::solved || !strictly_complementary(p0, s.result(), 1e-3)) continue;
     ++compared;
@@ -87,7 +95,7 @@ TEST(DenseQpSolver, GradientsMatchFiniteDifferences) {
     const QpGradient g = s.backward(wx, wy, wz);
     EXPECT_LT(g.adjoint_residual, 1e-12) << "seed " << seed;
     auto loss = [&](const QpProblem& p) {
-      DenseQpSolver t(tight);
+      DenseQpSolver t(tight, GetParam());
       t.setup(p);
       const QpResult& r = t.solve();
       EXPECT_EQ(r.info.status, QpStatus::solved);
@@ -122,6 +130,100 @@ TEST(DenseQpSolver, GradientsMatchFiniteDifferences) {
   EXPECT_GE(compared, 8);
 }
 
+INSTANTIATE_TEST_SUITE_P(BothMethods, DenseQpMethods,
+                         ::testing::Values(DenseQpMethod::active_set_first, DenseQpMethod::interior_point));
+
+// A positive semidefinite P (a free direction bounded only by constraints): the active-set
+// method needs strict convexity, so the interior point solves it.
+TEST(DenseQpSolver, SemidefiniteProblemGoesToTheInteriorPoint) {
+  QpProblem p(2);
+  p.P.insert(0, 0) = 1.0;  // x1 has no curvature
+  p.q << -1.0, -1.0;
+  p.xu = Vector::Constant(2, 2.0);
+  DenseQpSolver s;
+  s.setup(p);
+  const QpResult& r = s.solve();
+  EXPECT_EQ(r.info.status, QpStatus::solved);
+  EXPECT_EQ(r.info.message, "solved by the dense interior point");
+  EXPECT_NEAR(r.x(0), 1.0, 1e-8);
+  EXPECT_NEAR(r.x(1), 2.0, 1e-8);
+}
+
+// min ½·a·x0² + ½·x1² + h·x0 − 3·x1 s.t. x0 ≥ 0, x1 ≤ 2 (a row) at h = 0: x0 = 0 is both the
+// unconstrained minimizer and on its bound (multiplier 0: weakly active). dx0/dh is −1/a
+// from above and 0 from below; backward() reports their mean −1/(2a), as central
+// differences and the interior point's limit do; the strictly active row keeps its exact
+// derivative (dx1/du = 1).
+TEST(DenseQpSolver, WeaklyActiveSideGetsTheMeanOfTheOneSidedDerivatives) {
+  const double a = 4.0;
+  QpProblem p(2);
+  p.P.insert(0, 0) = a;
+  p.P.insert(1, 1) = 1.0;
+  p.q << 0.0, -3.0;
+  p.G = SparseMatrix(1, 2);
+  p.G.insert(0, 1) = 1.0;
+  p.l = Vector::Constant(1, -kInf);
+  p.u = Vector::Constant(1, 2.0);
+  p.xl(0) = 0.0;
+  for (const DenseQpMethod method : {DenseQpMethod::active_set_first, DenseQpMethod::interior_point}) {
+    QpSettings st;
+    st.eps_abs = 1e-12;
+    DenseQpSolver s(st, method);
+    s.setup(p);
+    const QpResult& r = s.solve();
+    ASSERT_EQ(r.info.status, QpStatus::solved) << r.info.message;
+    EXPECT_NEAR(r.x(0), 0.0, 1e-6);  // the interior point: ~√eps_abs at a weakly active side
+    EXPECT_NEAR(r.x(1), 2.0, 1e-9);
+    const QpGradient g0 = s.backward(Vector::Unit(2, 0));
+    EXPECT_NEAR(g0.dq(0), -1.0 / (2 * a), 1e-4) << r.info.message;
+    const QpGradient g1 = s.backward(Vector::Unit(2, 1));
+    EXPECT_NEAR(g1.du(0), 1.0, 1e-6) << r.info.message;
+  }
+}
+
+// Degenerate families: every row of G duplicated (dependent active rows), and P scaled to
+// 1e-3 (a flat direction next to stiff ones). The objective equals QpSolver's; backward()
+// gives finite gradients with a small adjoint residual.
+TEST(DenseQpSolver, DuplicatedRowsAndSmallCurvatureSolve) {
+  int solved = 0;
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    for (int variant = 0; variant < 2; ++variant) {
+      QpProblem p = testing_support::make_random_qp(seed, 8, false);
+      if (variant == 0) {
+        const Index m = p.G.rows();
+        SparseMatrix G2(2 * m, p.G.cols());
+        std::vector<Triplet> t;
+        for (Index j = 0; j < p.G.outerSize(); ++j)
+          for (SparseMatrix::InnerIterator it(p.G, j); it; ++it) {
+            t.emplace_back(it.row(), j, it.value());
+            t.emplace_back(it.row() + m, j, it.value());
+          }
+        G2.setFromTriplets(t.begin(), t.end());
+        p.G = G2;
+        p.l = Vector(p.l.replicate(2, 1));
+        p.u = Vector(p.u.replicate(2, 1));
+      } else {
+        p.P *= 1e-3;
+      }
+      QpSolver ref;
+      ref.setup(p);
+      const QpResult& rr = ref.solve();
+      DenseQpSolver dense;
+      dense.setup(p);
+      const QpResult& rd = dense.solve();
+      if (rr.info.status != QpStatus::solved) continue;
+      ++solved;
+      ASSERT_EQ(rd.info.status, QpStatus::solved) << "seed " << seed << " variant " << variant << ": " << rd.info.message;
+      EXPECT_NEAR(rd.info.objective, rr.info.objective, 1e-7 * (1 + std::abs(rr.info.objective)))
+          << "seed " << seed << " variant " << variant;
+      const QpGradient g = dense.backward(Vector::Ones(p.num_variables()));
+      EXPECT_TRUE(g.dq.allFinite());
+      EXPECT_LT(g.adjoint_residual, 1e-6) << "seed " << seed << " variant " << variant << ": " << rd.info.message;
+    }
+  }
+  EXPECT_GE(solved, 15);
+}
+
 TEST(DenseQpSolver, UpdateEqualsFreshSetup) {
   const QpProblem p1 = small_problem(3), p2 = small_problem(4);
   QpProblem p2_on_1 = p1;  // p1's pattern and classes, other values
@@ -136,6 +238,14 @@ TEST(DenseQpSolver, UpdateEqualsFreshSetup) {
   b.setup(p2_on_1);
   const Vector xb = b.solve().x;
   EXPECT_EQ(xa, xb);
+  // A new P (the cached factor of the active-set method must not be reused).
+  QpProblem p3 = p2_on_1;
+  p3.P *= 2.0;
+  a.update(p3);
+  const Vector xa3 = a.solve().x;
+  DenseQpSolver c;
+  c.setup(p3);
+  EXPECT_EQ(xa3, c.solve().x);
   QpProblem other = testing_support::make_random_qp(3, 13, true);
   EXPECT_THROW(a.update(other), InputError);
 }

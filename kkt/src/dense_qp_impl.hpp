@@ -51,10 +51,26 @@ struct DenseQpSolver::Impl {
   // The adjoint's factorization at the solution (dense_qp_backward.cpp): constraints with
   // W = s/λ < 1 stay as rows of E = [Ae; C_active] with −W on the diagonal, the others are
   // eliminated into K_adj = P + C_inactiveᵀ W⁻¹ C_inactive (+ρI).
-  std::vector<Index> active;
-  DenseMatrix E, K_adj, WE, S_adj;
+  std::vector<Index> active, weak;
+  DenseMatrix E, K_adj, WE, S_adj;  // E, WE, S_adj at full size; the first ne_adj rows/cols used
+  Index ne_adj = 0;
   detail::SmallCholesky llt_Kadj, llt_Sadj;
   Vector W_sides;
+  struct AdjointWork {  // backward()'s vectors, kept between calls (no allocation once sized)
+    Vector g_y, g_l, fy, fl, a, b, ct, r1, r2, r3, da, db, dct, Ctv, Cv, alpha_a, beta_a, alpha_g, beta_g;
+    Vector wl, f, ka, u, rhs, Ca, dk;
+  } aw;
+
+  // Goldfarb–Idnani active-set method (dense_qp_active_set.cpp).
+  bool use_active_set = true;
+  bool exact_active_set = false;   // the last solution came from it
+  detail::SmallCholesky llt_P;     // P = LLᵀ, kept while P's values repeat (p_factor_ready)
+  DenseMatrix J0, J, R;            // J0 = L⁻ᵀ
+  Vector p_values;                 // P's stored values of the last fill
+  bool p_factor_ready = false;
+  std::vector<Index> as_index;     // active constraints: side k ≥ 0, equality row r as −1 − r
+  std::vector<char> as_active;     // per side
+  Vector as_u, as_d, as_z, as_r, as_normal, side_norm1;
 
   QpResult result;
   bool used_fallback = false;
@@ -78,9 +94,13 @@ struct DenseQpSolver::Impl {
   // returns whether they are within eps.
   bool fill_result_and_check();
   bool factorize_adjoint();
+  bool factor_adjoint_split();  // the split and factors for the current W_sides
+  bool factor_exact_active_set();  // the same at an exact active set with weak sides, one pass
   // Solves [P Aeᵀ Cᵀ; Ae 0 0; C 0 −W] (a, b, c̃) = (fx, fy, fl) with factorize_adjoint()'s factors.
   void adjoint_solve(const Vector& fx, const Vector& fy, const Vector& fl, Vector& a, Vector& b, Vector& ct);
-  bool run_dense();
+  bool run_dense();                            // the interior point (dense_qp_interior_point.cpp)
+  int max_interior_point_iterations() const;  // min(60, settings.max_iter), then QpSolver
+  bool run_active_set();
   void run_fallback(const char* why);
 };
 

@@ -14,9 +14,6 @@
 namespace lcprelax {
 namespace dense_qp_detail {
 
-constexpr int kDenseMaxIterations = 60;  // then QpSolver takes over
-constexpr double kStepToBoundary = 0.99;
-constexpr int kRegRaises = 8;
 
 double dist_to_box(double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); }
 
@@ -27,18 +24,24 @@ double support(double z, double lo, double hi) {
 }
 
 
-// Largest α ≤ 1 with v + α dv ≥ 0.
-double max_step(const Vector& v, const Vector& dv) {
-  double a = 1.0;
-  for (Index k = 0; k < v.size(); ++k)
-    if (dv(k) < 0) a = std::min(a, -v(k) / dv(k));
-  return a;
-}
-
 // Class of a row or bound: 0 absent, 1 lower, 2 upper, 3 both sides, 4 equality.
 char side_class(double lo, double up) {
   if (lo == up) return 4;
   return static_cast<char>((std::isfinite(lo) ? 1 : 0) + (std::isfinite(up) ? 2 : 0));
+}
+
+// QpInfo's defaults, keeping the message's storage (no allocation per solve).
+void reset_info(QpInfo& i) {
+  static const QpInfo fresh = [] {
+    QpInfo f;
+    f.message = std::string();
+    return f;
+  }();
+  std::string message;
+  message.swap(i.message);
+  i = fresh;
+  message.assign("solve() was not called");
+  i.message.swap(message);
 }
 
 }  // namespace dense_qp_detail
@@ -86,6 +89,7 @@ void DenseQpSolver::Impl::load(const QpProblem& p) {
   }
   me = static_cast<Index>(eq_rows.size());
   mc = static_cast<Index>(sides.size());
+  p_factor_ready = false;
   P.setZero(n, n);
   A.setZero(p.num_equalities(), n);
   G.setZero(p.num_inequalities(), n);
@@ -99,12 +103,21 @@ void DenseQpSolver::Impl::load(const QpProblem& p) {
 
 void DenseQpSolver::Impl::fill_values() {
   const QpProblem& p = problem;
-  P.setZero();
-  for (Index j = 0; j < p.P.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(p.P, j); it; ++it) {
-      P(it.row(), j) += it.value();
-      if (it.row() != j) P(j, it.row()) += it.value();
-    }
+  // P's stored values unchanged since the last fill: the active-set method's factors of P stay.
+  const Index nnz_p = p.P.nonZeros();
+  if (p_factor_ready && p_values.size() == nnz_p &&
+      std::equal(p.P.valuePtr(), p.P.valuePtr() + nnz_p, p_values.data())) {
+    // same P
+  } else {
+    p_factor_ready = false;
+    p_values = Eigen::Map<const Vector>(p.P.valuePtr(), nnz_p);
+    P.setZero();
+    for (Index j = 0; j < p.P.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(p.P, j); it; ++it) {
+        P(it.row(), j) += it.value();
+        if (it.row() != j) P(j, it.row()) += it.value();
+      }
+  }
   A = p.A;
   G = p.G;
   for (Index r = 0; r < me; ++r) {
@@ -126,12 +139,15 @@ void DenseQpSolver::Impl::fill_values() {
 }
 
 void DenseQpSolver::Impl::size_work() {
-  for (Vector* v : {&x, &rd, &res_n, &dx, &f, &tmp_n}) v->setZero(n);
+  for (Vector* v : {&x, &rd, &res_n, &dx, &f, &tmp_n, &as_u, &as_d, &as_z, &as_r, &as_normal}) v->setZero(n);
   for (Vector* v : {&y, &re, &dy, &tmp_me}) v->setZero(me);
-  for (Vector* v : {&s, &lam, &rp, &rc, &ds, &dlam, &w, &cx}) v->setZero(mc);
+  for (Vector* v : {&s, &lam, &rp, &rc, &ds, &dlam, &w, &cx, &side_norm1}) v->setZero(mc);
   Gx.setZero(Gi.rows());
   Drow.setZero(Gi.rows());
   K.setZero(n, n);
+  E.setZero(me + mc, n);
+  WE.setZero(n, me + mc);
+  S_adj.setZero(me + mc, me + mc);
   W.setZero(n, me);
   S.setZero(me, me);
   result.x.setZero(n);
@@ -159,48 +175,6 @@ void DenseQpSolver::Impl::apply_Ct(const Vector& v, Vector& out) {
       out(sd.index) += sd.sign * v(k);
   }
   out.noalias() += Gi.transpose() * Drow;
-}
-
-bool DenseQpSolver::Impl::factorize(const Vector& dk) {
-  double reg = reg_base;
-  for (int attempt = 0; attempt <= kRegRaises; ++attempt, reg *= 10.0) {
-    Drow.setZero();
-    K = P;
-    for (Index k = 0; k < mc; ++k) {
-      const Side& sd = sides[static_cast<std::size_t>(k)];
-      if (sd.on_g_row)
-        Drow(sd.gi_row) += dk(k);
-      else
-        K(sd.index, sd.index) += dk(k);
-    }
-    for (Index r = 0; r < Gi.rows(); ++r)
-      if (Drow(r) != 0.0) K.noalias() += (Drow(r) * Gi.row(r).transpose()) * Gi.row(r);
-    K.diagonal().array() += reg;
-    if (!llt_K.compute(K)) continue;
-    if (me == 0) return true;
-    W = Ae.transpose();
-    llt_K.solve_lower_columns(W);
-    S.noalias() = W.transpose() * W;
-    S.diagonal().array() += reg;
-    if (llt_S.compute(S)) return true;
-  }
-  return false;
-}
-
-void DenseQpSolver::Impl::solve_reduced(const Vector& rhs_x, const Vector& rhs_e, Vector& out_x, Vector& out_y) {
-  f = rhs_x;
-  if (me > 0) {
-    // S y = rhs_e − Ae K⁻¹ f, then x = K⁻¹(f + Aeᵀ y)  (K x − Aeᵀ y = f, Ae x = rhs_e).
-    tmp_n = f;
-    llt_K.solve_in_place(tmp_n);
-    tmp_me.noalias() = Ae * tmp_n;
-    tmp_me = rhs_e - tmp_me;
-    out_y = tmp_me;
-    llt_S.solve_in_place(out_y);
-    f.noalias() += Ae.transpose() * out_y;
-  }
-  out_x = f;
-  llt_K.solve_in_place(out_x);
 }
 
 bool DenseQpSolver::Impl::fill_result_and_check() {
@@ -263,78 +237,6 @@ bool DenseQpSolver::Impl::fill_result_and_check() {
          gap <= st.eps_abs + st.eps_rel * scale_g;
 }
 
-bool DenseQpSolver::Impl::run_dense() {
-  QpInfo& info = result.info;
-  info.iterations = 0, info.factorizations = 0;
-  factorized_at_final = false;
-  // Start: minimize ½xᵀPx + qᵀx + ½‖Cx − d‖² on Ae x = be, then s = max(Cx − d, 1), λ = 1.
-  lam.setOnes();
-  if (!factorize(lam)) return false;
-  ++info.factorizations;
-  apply_Ct(d, tmp_n);
-  rd = tmp_n - problem.q;
-  solve_reduced(rd, be, x, y);  // K x − Aeᵀ y = Cᵀd − q, Ae x = be
-  apply_C(x, cx);
-  s = (cx - d).cwiseMax(1.0);
-  const int max_iter = std::min(kDenseMaxIterations, settings.max_iter);
-  for (int it = 0;; ++it) {
-    info.iterations = it;
-    if (!x.allFinite() || !y.allFinite() || !s.allFinite() || !lam.allFinite()) return false;
-    // Residuals of Px + q − Aeᵀy − Cᵀλ = 0, Ae x = be, Cx − s = d.
-    rd.noalias() = P * x;
-    rd += problem.q;
-    if (me > 0) rd.noalias() -= Ae.transpose() * y;
-    apply_Ct(lam, tmp_n);
-    rd -= tmp_n;
-    if (me > 0) {
-      re.noalias() = Ae * x;
-      re -= be;
-    }
-    apply_C(x, cx);
-    rp = cx - s - d;
-    const double mu = mc > 0 ? s.dot(lam) / static_cast<double>(mc) : 0.0;
-    // The test on the user's residuals, once complementarity is near the tolerance (with a
-    // relative tolerance, every iteration).
-    const bool near = settings.eps_rel > 0 || static_cast<double>(mc) * mu <= 10.0 * settings.eps_abs;
-    if (near && fill_result_and_check()) {
-      // The adjoint system at the final iterate, for backward().
-      if (!factorize_adjoint()) return false;
-      ++info.factorizations;
-      factorized_at_final = true;
-      return true;
-    }
-    if (it >= max_iter) return false;
-    w = lam.cwiseQuotient(s);
-    if (!factorize(w)) return false;
-    ++info.factorizations;
-    // Direction for a complementarity target rc (λ∘s − target):
-    //   K dx − Aeᵀdy = −rd − Cᵀ S⁻¹(rc + Λ rp),  Ae dx = −re,
-    //   ds = C dx + rp,  dλ = −S⁻¹(rc + Λ ds).
-    auto direction = [&] {
-      dlam = (rc + lam.cwiseProduct(rp)).cwiseQuotient(s);
-      apply_Ct(dlam, tmp_n);
-      tmp_n = -rd - tmp_n;
-      dx = tmp_n;
-      solve_reduced(dx, -re, dx, dy);
-      apply_C(dx, ds);
-      ds += rp;
-      dlam = -(rc + lam.cwiseProduct(ds)).cwiseQuotient(s);
-    };
-    rc = s.cwiseProduct(lam);
-    direction();
-    double alpha = std::min(max_step(s, ds), max_step(lam, dlam));
-    if (mc > 0) {
-      const double mu_aff = (s + alpha * ds).dot(lam + alpha * dlam) / static_cast<double>(mc);
-      const double sigma = std::pow(mu_aff / mu, 3);
-      rc = s.cwiseProduct(lam) + ds.cwiseProduct(dlam);
-      rc.array() -= sigma * mu;
-      direction();
-      alpha = std::min(1.0, kStepToBoundary * std::min(max_step(s, ds), max_step(lam, dlam)));
-    }
-    x += alpha * dx, y += alpha * dy, s += alpha * ds, lam += alpha * dlam;
-  }
-}
-
 void DenseQpSolver::Impl::run_fallback(const char* why) {
   if (!fallback) fallback = std::make_unique<QpSolver>(settings);
   if (fallback_ready && fallback->can_update(problem)) {
@@ -350,9 +252,10 @@ void DenseQpSolver::Impl::run_fallback(const char* why) {
   used_fallback = true;
 }
 
-DenseQpSolver::DenseQpSolver(QpSettings settings) : impl_(std::make_unique<Impl>()) {
+DenseQpSolver::DenseQpSolver(QpSettings settings, DenseQpMethod method) : impl_(std::make_unique<Impl>()) {
   if (std::string e = settings.validation_error(); !e.empty()) throw InputError("QpSettings: " + e);
   impl_->settings = settings;
+  impl_->use_active_set = method == DenseQpMethod::active_set_first;
 }
 DenseQpSolver::~DenseQpSolver() = default;
 DenseQpSolver::DenseQpSolver(DenseQpSolver&&) noexcept = default;
@@ -388,13 +291,20 @@ const QpResult& DenseQpSolver::solve() {
   if (!m.has_setup) throw InputError("DenseQpSolver::solve() before setup()");
   const auto t0 = std::chrono::steady_clock::now();
   m.used_fallback = false;
-  m.result.info = QpInfo{};
+  reset_info(m.result.info);
   m.result.info.kkt_backend = KktBackend::dense;
-  if (m.run_dense()) {
+  m.exact_active_set = false;
+  if (m.use_active_set && m.run_active_set() && m.fill_result_and_check()) {
+    m.exact_active_set = true;
+    m.factorized_at_final = m.factorize_adjoint();
+    ++m.result.info.factorizations;
+    m.result.info.status = QpStatus::solved;
+    m.result.info.message = "solved by the dense active-set method";
+  } else if (m.run_dense()) {
     m.result.info.status = QpStatus::solved;
     m.result.info.message = "solved by the dense interior point";
   } else {
-    m.run_fallback(m.result.info.iterations >= kDenseMaxIterations ? "did not converge" : "failed");
+    m.run_fallback(m.result.info.iterations >= m.max_interior_point_iterations() ? "did not converge" : "failed");
   }
   m.result.info.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m.result;

@@ -8,15 +8,21 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <vector>
 
 namespace lcprelax::detail {
 
 class SmallCholesky {
  public:
-  bool compute(const Eigen::MatrixXd& A) {
+  /// Factorizes the n×n matrix A (any Eigen expression); the storage only grows, so
+  /// factorizations of varying sizes up to the largest one seen do not allocate.
+  template <class Derived>
+  bool compute(const Eigen::MatrixBase<Derived>& A) {
     const Index n = A.rows();
-    L_ = A;  // no allocation once sized
-    double* l = L_.data();
+    n_ = n;
+    if (static_cast<Index>(buf_.size()) < n * n) buf_.resize(static_cast<std::size_t>(n * n));
+    Eigen::Map<Eigen::MatrixXd>(buf_.data(), n, n) = A;
+    double* l = buf_.data();
     for (Index j = 0; j < n; ++j) {
       double* cj = l + j * n;
       for (Index k = 0; k < j; ++k) {  // column j −= L(j,k)·column k (rows ≥ j)
@@ -36,8 +42,8 @@ class SmallCholesky {
   /// b ← L⁻¹ b.
   template <class V>
   void solve_lower(V& b) const {
-    const Index n = L_.rows();
-    const double* l = L_.data();
+    const Index n = n_;
+    const double* l = buf_.data();
     for (Index j = 0; j < n; ++j) {
       const double* cj = l + j * n;
       const double v = b[j] / cj[j];
@@ -49,8 +55,8 @@ class SmallCholesky {
   /// b ← L⁻ᵀ b.
   template <class V>
   void solve_upper(V& b) const {
-    const Index n = L_.rows();
-    const double* l = L_.data();
+    const Index n = n_;
+    const double* l = buf_.data();
     for (Index j = n - 1; j >= 0; --j) {
       const double* cj = l + j * n;
       double v = b[j];
@@ -66,7 +72,8 @@ class SmallCholesky {
   }
 
   /// Each column of B ← L⁻¹ column.
-  void solve_lower_columns(Eigen::MatrixXd& B) const {
+  template <class M>
+  void solve_lower_columns(M&& B) const {
     for (Index c = 0; c < B.cols(); ++c) {
       auto col = B.col(c);
       solve_lower(col);
@@ -74,7 +81,8 @@ class SmallCholesky {
   }
 
  private:
-  Eigen::MatrixXd L_;
+  std::vector<double> buf_;  // L, column-major n_×n_ (capacity kept)
+  Index n_ = 0;
 };
 
 }  // namespace lcprelax::detail

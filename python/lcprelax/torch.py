@@ -23,8 +23,9 @@ convert with ``.double().cpu()``.
 
 A sample that ends without a solution raises :class:`lcprelax.SolveError` in forward,
 naming the sample and its status (never NaN silently). Gradients exist where the solution
-map is differentiable (strict complementarity); at a degenerate point they are one-sided
-(see the C++ headers). If the layer solved another batch between a forward and its
+map is differentiable (strict complementarity); at a weakly active constraint the dense
+engine gives the mean of the one-sided derivatives, the sparse one its last iterate's
+interpolation (docs/python.md, "Engine"). If the layer solved another batch between a forward and its
 backward, backward first re-solves the saved inputs (results are deterministic, so this
 gives the same factorization; it costs one more solve).
 """
@@ -122,7 +123,9 @@ class QpLayer(torch.nn.Module):
 
     ``QpLayer(P, A=None, G=None, *, threads=0, **settings)``: P (upper triangle), A, G are
     scipy.sparse patterns (their values are the defaults of ``forward``); settings are
-    QpSettings keywords (``eps_abs=1e-9`` ...). ``forward(q, P=None, A=None, b=None, G=None,
+    QpSettings keywords (``eps_abs=1e-9`` ...) and ``engine="auto"|"dense"|"sparse"`` (auto:
+    the dense active-set/interior-point solver for small problems, QpSolver otherwise;
+    ``layer.engine.engine`` says which). ``forward(q, P=None, A=None, b=None, G=None,
     l=None, u=None, xl=None, xu=None)`` returns x, or (x, y, z) with ``multipliers=True``.
     """
 

@@ -83,7 +83,7 @@ void for_each_sample(Index count, int threads, const std::function<void(Index)>&
 #ifdef LCPRELAX_HAS_OPENMP
   // No more threads than samples (waking an idle thread costs more than a small sample).
   const int nt = static_cast<int>(std::min<Index>(threads > 0 ? threads : omp_get_max_threads(), std::max<Index>(count, 1)));
-#pragma omp parallel for num_threads(nt) schedule(static)
+#pragma omp parallel for num_threads(nt) schedule(dynamic, 16)
   for (Index k = 0; k < count; ++k) guarded(k);
 #else
   (void)threads;

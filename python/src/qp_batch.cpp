@@ -22,6 +22,7 @@
 #include <lcprelax/kkt/dense_qp_solver.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -141,11 +142,18 @@ class PyQpBatch {
     {
       py::gil_scoped_release nogil;
       for_each_sample(B, threads_, [&](Index k) {
-        const Vector gx = Eigen::Map<const Vector>(rx.row(k), n);
-        const Vector gy = ry.given() ? Vector(Eigen::Map<const Vector>(ry.row(k), me)) : Vector();
-        const Vector gz = rz.given() ? Vector(Eigen::Map<const Vector>(rz.row(k), mi)) : Vector();
-        const QpGradient g = dense_ ? dense_solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz)
-                                    : solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz);
+        // Per-sample buffers, reused from call to call (the dense engine then allocates nothing).
+        Vector& gx = grad_in_[static_cast<std::size_t>(k)][0];
+        Vector& gy = grad_in_[static_cast<std::size_t>(k)][1];
+        Vector& gz = grad_in_[static_cast<std::size_t>(k)][2];
+        gx = Eigen::Map<const Vector>(rx.row(k), n);
+        if (ry.given()) gy = Eigen::Map<const Vector>(ry.row(k), me); else gy.resize(0);
+        if (rz.given()) gz = Eigen::Map<const Vector>(rz.row(k), mi); else gz.resize(0);
+        QpGradient& g = grads_[static_cast<std::size_t>(k)];
+        if (dense_)
+          dense_solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz, g);
+        else
+          g = solvers_[static_cast<std::size_t>(k)]->backward(gx, gy, gz);
         if (nnz(g.dP) != nP || nnz(g.dA) != nA || nnz(g.dG) != nG)
           throw std::runtime_error("QpBatch.backward(): a gradient left the input's sparsity pattern");
         copy_row(g.dP.valuePtr(), nP, pP + k * nP), copy_or_nan(g.dq, n, pq + k * n);
@@ -191,6 +199,8 @@ class PyQpBatch {
         solvers_.push_back(std::make_unique<QpSolver>(settings_));
     }
     set_up_.assign(static_cast<std::size_t>(B), 0);
+    grads_.assign(static_cast<std::size_t>(B), QpGradient{});
+    grad_in_.assign(static_cast<std::size_t>(B), {});
     solved_ = false;
   }
 
@@ -225,6 +235,8 @@ class PyQpBatch {
   std::vector<std::unique_ptr<DenseQpSolver>> dense_solvers_;
   bool dense_ = false;
   std::vector<char> set_up_;
+  std::vector<QpGradient> grads_;               // backward()'s output per sample
+  std::vector<std::array<Vector, 3>> grad_in_;  // backward()'s dl_dx, dl_dy, dl_dz per sample
   bool solved_ = false;
   long long generation_ = 0;
   std::mutex mutex_;
