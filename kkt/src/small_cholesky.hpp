@@ -1,5 +1,5 @@
 #pragma once
-// Cholesky factorization A = LLᵀ of a small dense SPD matrix (n ≲ 64) with plain loops on
+// Cholesky factorization A = LLᵀ of a small dense SPD matrix (n ≲ 100) with plain loops on
 // contiguous column-major storage: for the sizes of DenseQpSolver it is several times faster
 // than Eigen::LLT's blocked dynamic-size code. compute() fails (returns false) on a pivot
 // that is not positive and finite. Internal to the dense QP solver.

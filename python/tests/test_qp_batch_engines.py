@@ -12,7 +12,7 @@ import lcprelax
 def _random_problem(rng):
     while True:
         n, me, mi = int(rng.integers(1, 10)), int(rng.integers(0, 3)), int(rng.integers(0, 8))
-        if 3 * n + me + 2 * mi <= 64:
+        if 3 * n + me + 2 * mi <= 64:  # (the dense engine takes up to 128)
             break
     kind = int(rng.integers(0, 4))  # 0 convex, 1 PSD, 2 LP, 3 infeasible row
     B = rng.standard_normal((n, n))
