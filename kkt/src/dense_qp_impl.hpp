@@ -4,6 +4,8 @@
 #include <lcprelax/kkt/dense_qp_solver.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 
+#include "qp_solver_impl.hpp"
+
 #include "small_cholesky.hpp"
 
 #include <Eigen/Cholesky>
@@ -12,8 +14,6 @@
 #include <vector>
 
 namespace lcprelax {
-
-using DenseMatrix = Eigen::MatrixXd;
 
 struct DenseQpSolver::Impl {
   // Where an internal equality row comes from, and where a one-sided constraint does.
@@ -44,7 +44,7 @@ struct DenseQpSolver::Impl {
 
   // Iterate and work arrays (sized by size_work()).
   Vector x, y, s, lam;
-  Vector res_n, rd, re, rp, rc, dx, dy, ds, dlam, f, Gx, w, Drow, tmp_n, tmp_me, cx;
+  Vector rd, re, rp, rc, dx, dy, ds, dlam, f, Gx, w, Drow, tmp_n, tmp_me, cx;
   DenseMatrix K, W, S;
   detail::SmallCholesky llt_K, llt_S;
   bool factorized_at_final = false;
@@ -71,6 +71,10 @@ struct DenseQpSolver::Impl {
   std::vector<Index> as_index;     // active constraints: side k ≥ 0, equality row r as −1 − r
   std::vector<char> as_active;     // per side
   Vector as_u, as_d, as_z, as_r, as_normal, side_norm1;
+
+  struct ResidualProducts {  // P x, A x, G x, Aᵀy, Gᵀz of the termination test
+    Vector Px, Ax, Gx, Aty, Gtz;
+  } rv;
 
   QpResult result;
   bool used_fallback = false;

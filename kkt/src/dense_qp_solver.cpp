@@ -15,14 +15,6 @@ namespace lcprelax {
 namespace dense_qp_detail {
 
 
-double dist_to_box(double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); }
-
-double support(double z, double lo, double hi) {
-  if (z > 0) return hi * z;
-  if (z < 0) return lo * z;
-  return 0.0;
-}
-
 
 // Class of a row or bound: 0 absent, 1 lower, 2 upper, 3 both sides, 4 equality.
 char side_class(double lo, double up) {
@@ -139,7 +131,10 @@ void DenseQpSolver::Impl::fill_values() {
 }
 
 void DenseQpSolver::Impl::size_work() {
-  for (Vector* v : {&x, &rd, &res_n, &dx, &f, &tmp_n, &as_u, &as_d, &as_z, &as_r, &as_normal}) v->setZero(n);
+  for (Vector* v : {&x, &rd, &dx, &f, &tmp_n, &as_u, &as_d, &as_z, &as_r, &as_normal, &rv.Px, &rv.Aty, &rv.Gtz})
+    v->setZero(n);
+  rv.Ax.setZero(problem.num_equalities());
+  rv.Gx.setZero(problem.num_inequalities());
   for (Vector* v : {&y, &re, &dy, &tmp_me}) v->setZero(me);
   for (Vector* v : {&s, &lam, &rp, &rc, &ds, &dlam, &w, &cx, &side_norm1}) v->setZero(mc);
   Gx.setZero(Gi.rows());
@@ -194,47 +189,11 @@ bool DenseQpSolver::Impl::fill_result_and_check() {
     const Side& sd = sides[static_cast<std::size_t>(k)];
     (sd.on_g_row ? r.z(sd.index) : r.z_bounds(sd.index)) -= sd.sign * lam(k);
   }
-  // Unscaled residuals (qp_settings.hpp), on the dense copies.
-  tmp_n.noalias() = P * x;  // Px
-  double primal = 0.0, scale_p = detail::inf_norm(x);
-  for (Index i = 0; i < A.rows(); ++i) {
-    const double ax = A.row(i).dot(x);
-    primal = std::max(primal, std::abs(ax - p.b(i)));
-    scale_p = std::max({scale_p, std::abs(ax), std::abs(p.b(i))});
-  }
-  for (Index i = 0; i < G.rows(); ++i) {
-    const double gx = G.row(i).dot(x);
-    primal = std::max(primal, dist_to_box(gx, p.l(i), p.u(i)));
-    scale_p = std::max(scale_p, std::abs(gx));
-  }
-  for (Index j = 0; j < n; ++j) primal = std::max(primal, dist_to_box(x(j), p.xl(j), p.xu(j)));
-  Vector& rdual = res_n;
-  rdual = tmp_n + p.q + r.z_bounds;  // dual residual vector, built term by term for its scale
-  double scale_d = std::max({detail::inf_norm(tmp_n), detail::inf_norm(p.q), detail::inf_norm(r.z_bounds)});
-  if (A.rows() > 0) {
-    f.noalias() = A.transpose() * r.y;
-    rdual += f, scale_d = std::max(scale_d, detail::inf_norm(f));
-  }
-  if (G.rows() > 0) {
-    f.noalias() = G.transpose() * r.z;
-    rdual += f, scale_d = std::max(scale_d, detail::inf_norm(f));
-  }
-  const double dual = detail::inf_norm(rdual);
-  long double sup = 0.0L, xPx = 0.0L, qx = 0.0L, by = 0.0L;
-  for (Index i = 0; i < r.z.size(); ++i) sup += support(r.z(i), p.l(i), p.u(i));
-  for (Index j = 0; j < n; ++j) {
-    sup += support(r.z_bounds(j), p.xl(j), p.xu(j));
-    xPx += static_cast<long double>(x(j)) * tmp_n(j);
-    qx += static_cast<long double>(p.q(j)) * x(j);
-  }
-  for (Index i = 0; i < r.y.size(); ++i) by += static_cast<long double>(p.b(i)) * r.y(i);
-  const double gap = static_cast<double>(std::abs(xPx + qx + by + sup));
-  const double scale_g = static_cast<double>(std::max({std::abs(xPx), std::abs(qx), std::abs(by), std::abs(sup)}));
-  r.info.primal_residual = primal, r.info.dual_residual = dual, r.info.duality_gap = gap;
-  r.info.objective = static_cast<double>(0.5L * xPx + qx) + p.r;
-  const QpSettings& st = settings;
-  return primal <= st.eps_abs + st.eps_rel * scale_p && dual <= st.eps_abs + st.eps_rel * scale_d &&
-         gap <= st.eps_abs + st.eps_rel * scale_g;
+  // The unscaled residuals and test of QpSolver (qp_settings.hpp, qp_solution.cpp).
+  const detail::Residuals res = detail::compute_residuals(p, r, rv.Px, rv.Ax, rv.Gx, rv.Aty, rv.Gtz);
+  r.info.primal_residual = res.primal, r.info.dual_residual = res.dual, r.info.duality_gap = res.gap;
+  r.info.objective = 0.5 * x.dot(rv.Px) + p.q.dot(x) + p.r;
+  return detail::within(res, settings, 1.0);
 }
 
 void DenseQpSolver::Impl::run_fallback(const char* why) {

@@ -63,9 +63,9 @@ void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& 
   for (Index k = 0; k < f.mg; ++k) r.z(f.g_index[k]) = f.Eg(k) * zg(k) / f.c;
 }
 
-Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w) {
+Residuals compute_residuals(const QpProblem& p, const QpResult& r, Vector& Px, Vector& Ax, Vector& Gx, Vector& Aty,
+                            Vector& Gtz) {
   Residuals out;
-  Vector &Px = w.Px, &Ax = w.Ax, &Gx = w.Gx, &Aty = w.Aty, &Gtz = w.Gtz;
   Px.noalias() = p.P.selfadjointView<Eigen::Upper>() * r.x;
   Ax.noalias() = p.A * r.x;
   Gx.noalias() = p.G * r.x;
@@ -88,6 +88,10 @@ Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w)
   out.gap = static_cast<double>(std::abs(xPx + qx + by + sup));
   out.scale_g = static_cast<double>(std::max({std::abs(xPx), std::abs(qx), std::abs(by), std::abs(sup)}));
   return out;
+}
+
+Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w) {
+  return compute_residuals(p, r, w.Px, w.Ax, w.Gx, w.Aty, w.Gtz);
 }
 
 }  // namespace lcprelax::detail

@@ -63,6 +63,10 @@ struct Workspace {
 /// Maps the scaled iterate back to the user's variables and multipliers.
 void unscale_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, QpResult& r, Workspace& w);
 Residuals compute_residuals(const QpProblem& p, const QpResult& r, Workspace& w);
+/// The same with caller-owned product vectors P x, A x, G x, Aᵀy, Gᵀz (assigned here; no
+/// allocation once sized): DenseQpSolver's termination test.
+Residuals compute_residuals(const QpProblem& p, const QpResult& r, Vector& Px, Vector& Ax, Vector& Gx, Vector& Aty,
+                            Vector& Gtz);
 /// Replaces the bound multipliers of variables at a bound by the exact componentwise
 /// value (qp_bound_multipliers.cpp); needs w.Px, w.Aty, w.Gtz of r (compute_residuals).
 /// Returns how many changed.

@@ -1,8 +1,10 @@
 #pragma once
 // Cholesky factorization A = LLᵀ of a small dense SPD matrix (n ≲ 100) with plain loops on
-// contiguous column-major storage: for the sizes of DenseQpSolver it is several times faster
-// than Eigen::LLT's blocked dynamic-size code. compute() fails (returns false) on a pivot
-// that is not positive and finite. Internal to the dense QP solver.
+// contiguous column-major storage whose capacity is kept between factorizations of varying
+// size (DenseQpSolver factorizes matrices of a few to a few tens of rows thousands of times
+// per batch; Eigen::LLT reallocates on each size change and runs blocked dynamic-size code).
+// compute() fails (returns false) on a pivot that is not positive and finite. Internal to the
+// dense QP solver.
 #include <lcprelax/sparse/types.hpp>
 
 #include <Eigen/Core>

@@ -67,7 +67,7 @@ class DenseQpSolver {
   /// Largest n + (rows of A) + 2·(rows of G) + 2n (every side of every row and bound
   /// finite) this solver is meant for: the dense work grows like n², factorizations like n³.
   /// Measured (random strictly convex QPs, batch 1,024, solve + backward, 1 thread): 7–10×
-  /// faster than QpSolver from 3n + 2m = 51 to 125 (bench/README.md, run_qp_layer).
+  /// faster than QpSolver from 3n + 2m = 25 to 125 (bench/run_qp_layer_random.py).
   static constexpr Index kMaxDimension = 128;
 
   explicit DenseQpSolver(QpSettings settings = {}, DenseQpMethod method = DenseQpMethod::active_set_first);
