@@ -4,7 +4,8 @@
 // run_learning_curves.cpp.
 //
 //   run_learning_curves_scene --scene polygon|pile30 [--sizes 10,30,100,300,1000] [--seeds 5]
-//     [--params physical,structured,residual] [--noise 0.02] [--optimizer adam|lbfgs|adam+lbfgs]
+//     [--params physical,structured,residual,block,block_tied] [--loss relaxed|hard] [--noise 0.02]
+//     [--optimizer adam|lbfgs|adam+lbfgs]
 //     [--epochs 300] [--test 400] [--sanity-size 30] [--csv OUT.csv] [--plot OUT.png] > OUT.txt
 //
 // Truth: polygon = reference_polygon_model() (polygon_params.hpp) with the data of
@@ -21,8 +22,12 @@
 //   physical   μ (global), mass, inertia, vertices per shape class (the scene path's default);
 //   structured physical + μ per listed material pair (neither scene lists one: none is
 //              added) + gap offset + linear residual W per class;
-//   residual   only W per class, the physical parameters held at their perturbed θ₀.
-// Training: the relaxed step loss (SceneLossSettings defaults; the polygon's candidate margin
+//   residual   only W per class, the physical parameters held at their perturbed θ₀;
+//   block      physical + the lcp model's per-contact LCP correction (World::lcp_block) with
+//              all 20 entries free (elementwise: nothing of the LCP's structure imposed);
+//   block_tied physical + the same correction with the friction rows' antisymmetry imposed
+//              (7 entries); both start at 0 and need --loss hard.
+// Training: the relaxed step loss (or --loss hard: the hard loss, Lemke's adjoint) (SceneLossSettings defaults; the polygon's candidate margin
 // 0.05 m, polygon_objective.hpp), full batch, 1 thread: by default Adam as the CLIs (lr 0.02,
 // decay 0.003, at most --epochs epochs, the trainer's convergence test); lbfgs: L-BFGS (lr
 // 1); adam+lbfgs: Adam, then at most --polish L-BFGS iterations.
@@ -126,7 +131,10 @@ SceneParameterSettings param_settings(const std::string& name) {
   SceneParameterSettings s;
   if (name == "structured") s.learn.gap = s.learn.residual = true, s.mu_per_pair = true;
   else if (name == "residual") s.learn = SceneLearnFlags{false, false, false, false, false, false, true};
-  else if (name != "physical") throw InputError("--params: unknown '" + name + "' (physical, structured, residual)");
+  else if (name == "block") s.learn.block = true;
+  else if (name == "block_tied") s.learn.block_tied = true;
+  else if (name != "physical")
+    throw InputError("--params: unknown '" + name + "' (physical, structured, residual, block, block_tied)");
   return s;
 }
 
@@ -138,7 +146,8 @@ ParameterSet initial_theta(const World& world, const SceneParameterMap& map, dou
   for (Index k = 0; k < theta.size(); ++k) {
     const std::string& name = theta[k].name;
     if (name.rfind("mu[", 0) == 0) theta.set_value(name, p0.value("mu"));
-    else if (map.kind(k) != SceneParameterMap::Kind::gap && map.kind(k) != SceneParameterMap::Kind::residual)
+    else if (map.kind(k) != SceneParameterMap::Kind::gap && map.kind(k) != SceneParameterMap::Kind::residual &&
+             map.kind(k) != SceneParameterMap::Kind::lcp_block)
       theta.set_value(name, p0.value(name));
   }
   return theta;
@@ -213,12 +222,14 @@ RunResult evaluate_test(const Problem& test, const SceneParameterMap& map, const
 
 RunResult run(const Problem& train_data, const Problem& test, const std::string& param, ParameterSet* start_override,
               double perturb, std::uint64_t seed, int epochs, double stick_tol, const std::string& optimizer, double lr,
-              int polish) {
+              int polish, LossMethod loss) {
   const auto t0 = std::chrono::steady_clock::now();
   const World& world = train_data.data.scene.world;
   const SceneParameterMap map(world, param_settings(param));
   ParameterSet theta = start_override ? *start_override : initial_theta(world, map, perturb, seed);
-  SceneObjective objective(train_data.data, map, SceneLossSettings{});
+  SceneLossSettings ls;
+  ls.method = loss;
+  SceneObjective objective(train_data.data, map, ls);
   TrainSettings t;
   t.epochs = epochs;
   t.threads = 1;
@@ -256,14 +267,15 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
 int main(int argc, char** argv) {
   CLI::App app("learning curves of the scene path's parameterizations: polygon, 30-body pile (issue 20)");
   std::string scene = "polygon", params_list = "physical,structured,residual", sizes_list = "10,30,100,300,1000";
-  std::string csv_path = "bench/results/learning_curves_scene.csv", plot, optimizer = "adam";
+  std::string csv_path = "bench/results/learning_curves_scene.csv", plot, optimizer = "adam", loss_name = "relaxed";
   double lr = 0.02;
   int polish = 100;
   int seeds = 5, test_size = 400, epochs = 300, sanity_size = 30;
   double noise = 0.02, perturb = 0.25, stick_tol = 1e-3;
   app.add_option("--scene", scene, "polygon or pile30")->check(CLI::IsMember({"polygon", "pile30"}));
   app.add_option("--sizes", sizes_list, "training set sizes (transitions)");
-  app.add_option("--params", params_list, "parameterizations: physical, structured, residual");
+  app.add_option("--params", params_list, "parameterizations: physical, structured, residual, block, block_tied");
+  app.add_option("--loss", loss_name, "training loss: relaxed or hard")->check(CLI::IsMember({"relaxed", "hard"}));
   app.add_option("--seeds", seeds, "seeds per size");
   app.add_option("--test", test_size, "held-out transitions");
   app.add_option("--epochs", epochs, "L-BFGS iteration cap");
@@ -282,9 +294,10 @@ int main(int argc, char** argv) {
   std::vector<int> sizes;
   for (const std::string& s : bench::split_list(sizes_list)) sizes.push_back(std::stoi(s));
 
-  std::printf("Learning curves, %s (relaxed loss, %s: %d epochs, lr %g, L-BFGS polish <= %d; noise %g relative on "
+  const LossMethod loss = loss_name == "hard" ? LossMethod::hard : LossMethod::relaxed;
+  std::printf("Learning curves, %s (%s loss, %s: %d epochs, lr %g, L-BFGS polish <= %d; noise %g relative on "
               "v+, perturb %g, %d held-out transitions, stick: |Jt v+| <= %g m/s)\n",
-              scene.c_str(), optimizer.c_str(), epochs, optimizer == "lbfgs" ? 1.0 : lr, optimizer == "adam+lbfgs" ? polish : 0, noise, perturb,
+              scene.c_str(), loss_name.c_str(), optimizer.c_str(), epochs, optimizer == "lbfgs" ? 1.0 : lr, optimizer == "adam+lbfgs" ? polish : 0, noise, perturb,
               test_size, stick_tol);
   std::map<int, Problem> tests;
   for (int s = 1; s <= seeds; ++s) tests[s] = make_problem(scene, test_size, 777777 + s);
@@ -302,7 +315,7 @@ int main(int argc, char** argv) {
         const Problem clean = make_problem(scene, sanity_size, 1000 + sanity_size);
         ParameterSet truth = map.parameters(clean.data.scene.world);
         for (const std::string& opt : {std::string("lbfgs"), optimizer}) {
-          const RunResult q = run(clean, test, param, &truth, perturb, 1, epochs, stick_tol, opt, lr, polish);
+          const RunResult q = run(clean, test, param, &truth, perturb, 1, epochs, stick_tol, opt, lr, polish, loss);
           std::printf("sanity: %-10s trained by %s from the true theta on %d noise-free transitions: test_error %.3g, "
                       "mode_error %.3g, train_loss %.3g, %d epochs, %.1f s\n",
                       param.c_str(), opt.c_str(), sanity_size, q.test_error, q.mode_error, q.train_loss, q.epochs,
@@ -325,7 +338,7 @@ int main(int argc, char** argv) {
     double seconds = 0;
   };
   std::map<std::string, std::map<int, Cell>> cells;
-  const std::string method = optimizer == "adam" ? "relaxed" : "relaxed/" + optimizer;  // CSV: loss/optimizer
+  const std::string method = optimizer == "adam" ? loss_name : loss_name + "/" + optimizer;  // CSV: loss/optimizer
   for (const std::string& param : params)
     for (int n : sizes) {
       Cell& c = cells[param][n];
@@ -333,7 +346,7 @@ int main(int argc, char** argv) {
         Problem train_data = make_problem(scene, n, static_cast<std::uint64_t>(1000 * s + n));
         add_noise(train_data.data, noise, static_cast<std::uint64_t>(31 * s + n));
         const RunResult r = run(train_data, tests[s], param, nullptr, perturb, static_cast<std::uint64_t>(s), epochs, stick_tol,
-                                optimizer, lr, polish);
+                                optimizer, lr, polish, loss);
         csv << scene << ',' << param << ',' << method << ',' << n << ',' << s << ',' << r.epochs << ',' << r.converged << ','
             << r.train_loss << ',' << r.test_error << ',' << r.mode_error << ',' << r.contacts << ',' << r.failed << ','
             << r.train_failed << ',' << r.seconds << '\n';

@@ -11,7 +11,10 @@
 //   radius (measured 2.6e-12);
 // - "velocity_residual" likewise: --learn mu,residual lists the 12 entries per class,
 //   true = the file's W, relative error |Δ| (0.1·F from --perturb F);
-// - an unknown --learn entry, and gap or residual for learn polygon, exit 2 naming the entry.
+// - --learn block_tied / block (the lcp model's per-contact LCP correction) lists its 7 / 20
+//   entries (true 0) and trains with --method hard;
+// - an unknown --learn entry, gap, residual or block for learn polygon, block with a method
+//   other than hard, and both block forms at once, exit 2 naming the entry.
 #include "cli_support.hpp"
 
 #include <gtest/gtest.h>
@@ -113,6 +116,30 @@ TEST(CliLearnSceneStructured, UnknownOrMisplacedKindsExitTwo) {
   expect_bad_input("learn polygon --learn mu,gap --json", "learn scene");
   expect_bad_input("learn polygon --learn residual --json", "learn scene");
   expect_bad_input("learn scene --learn mu,residuals --json", "'residuals'");
+  expect_bad_input("learn scene --learn mu,block --json", "--method hard");
+  expect_bad_input("learn scene --learn mu,block_tied --method convex --json", "--method hard");
+  expect_bad_input("learn scene --learn block,block_tied --method hard --json", "block_tied");
+  expect_bad_input("learn polygon --learn mu,block --json", "learn scene");
+}
+
+// The lcp model's per-contact LCP block: listed with its entries, learned by the hard loss.
+TEST(CliLearnSceneStructured, LcpBlockIsLearnedByTheHardLoss) {
+  const std::string common = "learn scene --scene '" + kStack + "' --steps 20 --method hard --json";
+  const CliRun tied = run_cli(common + " --learn mu,block_tied --epochs 3");
+  ASSERT_EQ(tied.exit_code, 0) << tied.err << tied.out;
+  const auto t = nlohmann::json::parse(tied.out);
+  for (const char* name : {"lcp_block.Wnn", "lcp_block.Wnt", "lcp_block.Wtn", "lcp_block.Wtt", "lcp_block.mu",
+                           "lcp_block.qn", "lcp_block.qt"}) {
+    ASSERT_TRUE(t["learned"].contains(name)) << name << " in " << t["learned"].dump();
+    EXPECT_EQ(t["true"][name].get<double>(), 0.0) << name;
+  }
+  EXPECT_EQ(t["learned"].size(), 8u) << "mu and the 7 tied entries";
+  const CliRun free_block = run_cli(common + " --learn block --epochs 0");
+  ASSERT_EQ(free_block.exit_code, 0) << free_block.err << free_block.out;
+  const auto f = nlohmann::json::parse(free_block.out);
+  EXPECT_EQ(f["learned"].size(), 20u);
+  EXPECT_TRUE(f["learned"].contains("lcp_block.M33"));
+  EXPECT_TRUE(f["learned"].contains("lcp_block.q1"));
 }
 
 }  // namespace

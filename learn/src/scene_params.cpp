@@ -29,10 +29,63 @@ std::pair<int, int> ordered(int a, int b) { return {std::min(a, b), std::max(a, 
 
 constexpr Index kResidualEntries = 12;  // W is 3×4, row-major in θ
 
+// One parameter of World::lcp_block: B = Σ θ_k E_k, d = Σ θ_k e_k (scene_params.hpp).
+struct LcpBlockDirection {
+  std::string name;
+  Eigen::Matrix4d E = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d e = Eigen::Vector4d::Zero();
+};
+
+// Free: the 16 entries of B and the 4 of d. Tied (the friction rows' antisymmetry imposed):
+// a 2×2 correction of W in (n, t) spread with the LCP's signs, of the cone row's μ entry, and
+// of (q_n, q_t) with q⁻ = −q⁺.
+const std::vector<LcpBlockDirection>& lcp_block_directions(bool tied) {
+  static const std::vector<LcpBlockDirection> free_dirs = [] {
+    std::vector<LcpBlockDirection> d;
+    for (int k = 0; k < 4; ++k)
+      for (int l = 0; l < 4; ++l) {
+        LcpBlockDirection x{"lcp_block.M" + std::to_string(k) + std::to_string(l)};
+        x.E(k, l) = 1.0;
+        d.push_back(x);
+      }
+    for (int k = 0; k < 4; ++k) {
+      LcpBlockDirection x{"lcp_block.q" + std::to_string(k)};
+      x.e(k) = 1.0;
+      d.push_back(x);
+    }
+    return d;
+  }();
+  static const std::vector<LcpBlockDirection> tied_dirs = [] {
+    const double sign[3] = {1.0, 1.0, -1.0};  // LCP index 0 (λn), 1 (β⁺), 2 (β⁻) → J row n, t, t with sign
+    const int jrow[3] = {0, 1, 1};
+    std::vector<LcpBlockDirection> d;
+    const char* names[2][2] = {{"nn", "nt"}, {"tn", "tt"}};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        LcpBlockDirection x{std::string("lcp_block.W") + names[a][b]};
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l)
+            if (jrow[k] == a && jrow[l] == b) x.E(k, l) = sign[k] * sign[l];
+        d.push_back(x);
+      }
+    LcpBlockDirection mu{"lcp_block.mu"};
+    mu.E(3, 0) = 1.0;
+    d.push_back(mu);
+    LcpBlockDirection qn{"lcp_block.qn"};
+    qn.e(0) = 1.0;
+    d.push_back(qn);
+    LcpBlockDirection qt{"lcp_block.qt"};
+    qt.e(1) = 1.0, qt.e(2) = -1.0;
+    d.push_back(qt);
+    return d;
+  }();
+  return tied ? tied_dirs : free_dirs;
+}
+
 }  // namespace
 
 SceneLearnFlags parse_scene_learn_flags(const std::string& list) {
-  SceneLearnFlags f{false, false, false, false, false, false, false};
+  SceneLearnFlags f{false, false, false, false, false, false, false, false, false};
   std::stringstream ss(list);
   std::string item;
   int count = 0;
@@ -44,15 +97,18 @@ SceneLearnFlags parse_scene_learn_flags(const std::string& list) {
                    : item == "ground" ? &f.ground
                    : item == "gap" ? &f.gap
                    : item == "residual" ? &f.residual
+                   : item == "block" ? &f.block
+                   : item == "block_tied" ? &f.block_tied
                                       : nullptr;
     if (!target)
       throw InputError("--learn: unknown parameter kind '" + item +
-                       "' (expected mu, mass, inertia, vertices, ground, gap, residual)");
+                       "' (expected mu, mass, inertia, vertices, ground, gap, residual, block, block_tied)");
     if (*target) throw InputError("--learn: '" + item + "' given twice");
     *target = true;
     ++count;
   }
   if (count == 0) throw InputError("--learn: empty list");
+  if (f.block && f.block_tied) throw InputError("--learn: block and block_tied are two forms of one correction, give one");
   return f;
 }
 
@@ -116,6 +172,11 @@ SceneParameterMap::SceneParameterMap(const World& world, const SceneParameterSet
   first_residual_ = static_cast<Index>(kind_.size());
   if (settings.learn.residual)
     for (Index e = 0; e < kResidualEntries * classes; ++e) push(Kind::residual, 1.0);
+  if (settings.learn.block && settings.learn.block_tied)
+    throw InputError("scene parameters: learn.block and learn.block_tied exclude each other");
+  first_block_ = static_cast<Index>(kind_.size());
+  if (settings.learn.block || settings.learn.block_tied)
+    for (std::size_t k = 0; k < lcp_block_directions(settings.learn.block_tied).size(); ++k) push(Kind::lcp_block, 1.0);
   size_ = static_cast<Index>(kind_.size());
 }
 
@@ -180,6 +241,15 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
         for (Index j = 0; j < 4; ++j)
           theta.add(Parameter{"class" + std::to_string(c) + ".residual" + std::to_string(r) + std::to_string(j),
                               representative(c).velocity_residual(r, j)});
+  if (f.block || f.block_tied)
+    for (const LcpBlockDirection& d : lcp_block_directions(f.block_tied)) {
+      // The entry each direction owns (its first nonzero): B_kl, or d_k.
+      double value = 0.0;
+      Index i = 0, j = 0;
+      if (d.E.cwiseAbs().maxCoeff(&i, &j) > 0.0) value = world.lcp_block.M(i, j) * d.E(i, j);
+      else if (d.e.cwiseAbs().maxCoeff(&i) > 0.0) value = world.lcp_block.q(i) * d.e(i);
+      theta.add(Parameter{d.name, value});
+    }
   return theta;
 }
 
@@ -214,6 +284,17 @@ void SceneParameterMap::apply(const ParameterSet& theta, World& world) const {
     const Index k = first_segment_ + 4 * static_cast<Index>(s);
     world.segments[s].a = Vec2(theta[k].value, theta[k + 1].value);
     world.segments[s].b = Vec2(theta[k + 2].value, theta[k + 3].value);
+  }
+  if (settings_.learn.block || settings_.learn.block_tied) {
+    world.lcp_block.enabled = true;
+    world.lcp_block.M.setZero();
+    world.lcp_block.q.setZero();
+    const std::vector<LcpBlockDirection>& dirs = lcp_block_directions(settings_.learn.block_tied);
+    for (std::size_t k = 0; k < dirs.size(); ++k) {
+      const double v = theta[first_block_ + static_cast<Index>(k)].value;
+      world.lcp_block.M += v * dirs[k].E;
+      world.lcp_block.q += v * dirs[k].e;
+    }
   }
 }
 
@@ -262,6 +343,12 @@ Vector SceneParameterMap::gradient(const World& world, const std::vector<Contact
     grad(k) += g.segment_ends[s][0].x(), grad(k + 1) += g.segment_ends[s][0].y();
     grad(k + 2) += g.segment_ends[s][1].x(), grad(k + 3) += g.segment_ends[s][1].y();
   }
+  if (settings_.learn.block || settings_.learn.block_tied) {
+    const std::vector<LcpBlockDirection>& dirs = lcp_block_directions(settings_.learn.block_tied);
+    for (std::size_t k = 0; k < dirs.size(); ++k)
+      grad(first_block_ + static_cast<Index>(k)) +=
+          (dirs[k].E.array() * g.lcp_block_M.array()).sum() + dirs[k].e.dot(Eigen::Vector4d(g.lcp_block_q));
+  }
   return grad;
 }
 
@@ -282,6 +369,7 @@ ParameterSet perturb_scene_parameters(const ParameterSet& truth, const ScenePara
       case SceneParameterMap::Kind::inertia: theta(k) *= 1.0 + sign * fraction; break;
       case SceneParameterMap::Kind::angle:
       case SceneParameterMap::Kind::residual: theta(k) += sign * 0.1 * fraction; break;
+      case SceneParameterMap::Kind::lcp_block: break;  // kept: no scale-free size (entries in 1/kg, kg, m/s)
       default: theta(k) += sign * 0.5 * fraction * map.length_scale(k); break;
     }
   }
@@ -299,7 +387,8 @@ double scene_relative_error(const ParameterSet& estimate, const ParameterSet& tr
     case SceneParameterMap::Kind::mass:
     case SceneParameterMap::Kind::inertia: return d / std::abs(truth[k].value);
     case SceneParameterMap::Kind::angle:
-    case SceneParameterMap::Kind::residual: return d;
+    case SceneParameterMap::Kind::residual:
+    case SceneParameterMap::Kind::lcp_block: return d;
     default: return d / map.length_scale(k);
   }
 }

@@ -209,6 +209,9 @@ void check_call(const ContactSystem& s, const Vector& target, double dt, const C
   const std::string bad = settings.validation_error();
   if (!bad.empty()) throw InputError("ConvexStepLossSettings." + bad);
   check_input(s, target, dt);
+  if (s.lcp_block.enabled)
+    throw InputError("the convex step loss has no LCP: World::lcp_block (the per-contact LCP correction) is learned "
+                     "with the hard loss");
 }
 
 void mark_inaccurate_adjoint(ContactStatus& status, std::string& message, double adjoint) {

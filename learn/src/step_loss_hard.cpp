@@ -177,6 +177,20 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   SparseMatrix G(nr, nr);
   G.setFromTriplets(gt.begin(), gt.end());
   for (Index f = 0; f < nf; ++f) r.grad.mu(f) = lg.dM.coeff(gm + f, s.friction_rows[static_cast<std::size_t>(f)]);
+  if (s.lcp_block.enabled) {  // ∂ℓ/∂(B, d) of World::lcp_block: the sum over the contacts' blocks
+    std::vector<Index> friction_of(static_cast<std::size_t>(nc), -1);
+    for (Index f = 0; f < nf; ++f) friction_of[static_cast<std::size_t>(s.friction_rows[f])] = f;
+    for (Index c = 0; c < nc; ++c) {
+      const Index f = friction_of[static_cast<std::size_t>(c)];
+      const Index idx[4] = {c, f >= 0 ? bp + f : -1, f >= 0 ? bm + f : -1, f >= 0 ? gm + f : -1};
+      for (int k = 0; k < 4; ++k) {
+        if (idx[k] < 0) continue;
+        r.grad.lcp_block_q(k) += lg.dq(idx[k]);
+        for (int l = 0; l < 4; ++l)
+          if (idx[l] >= 0) r.grad.lcp_block_M(k, l) += lg.dM.coeff(idx[k], idx[l]);
+      }
+    }
+  }
   const Vector dqn = lg.dq.head(nc);
   const Vector dqt = lg.dq.segment(bp, nf) - lg.dq.segment(bm, nf);
 

@@ -103,6 +103,9 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
                           const RelaxedStepLossSettings& given, const Vector* center) {
   if (const std::string e = given.validation_error(); !e.empty()) throw InputError("RelaxedStepLossSettings: " + e);
   validate_step_loss_input(s, target, dt);
+  if (s.lcp_block.enabled)
+    throw InputError("the relaxed step loss does not take World::lcp_block (the per-contact LCP correction): learn it "
+                     "with the hard loss");
   const RelaxedStepLossSettings st = effective_settings(s, given);
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
   if (center != nullptr) check_center(s, *center);

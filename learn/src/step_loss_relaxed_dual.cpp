@@ -61,6 +61,9 @@ const Vector& RelaxedDualStepLossWorkspace::scaling() const { return impl_->S; }
 
 StepLossResult RelaxedDualStepLossWorkspace::evaluate(const ContactSystem& s, const Vector& target, double dt) {
   validate_step_loss_input(s, target, dt);
+  if (s.lcp_block.enabled)
+    throw InputError("the relaxed step loss does not take World::lcp_block (the per-contact LCP correction): learn it "
+                     "with the hard loss");
   Impl& m = *impl_;
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const Index n = nc + 3 * nf;

@@ -77,6 +77,7 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
   ContactSystem s;
   s.bodies = island.bodies;
   s.contacts = island.contacts;
+  s.lcp_block = world.lcp_block;
   const Index nb = static_cast<Index>(s.bodies.size());
   std::vector<int> block(world.bodies.size(), -1);
   s.minv.resize(3 * nb);

@@ -188,6 +188,8 @@ void ContactSystemCotangent::set_zero(const ContactSystem& s) {
   mu = Vector::Zero(s.num_friction());
   minv = Vector::Zero(s.num_dofs());
   v_star = Vector::Zero(s.num_dofs());
+  lcp_block_M.setZero();
+  lcp_block_q.setZero();
 }
 
 void WorldGradient::set_zero(const World& world, std::size_t num_contacts) {
@@ -198,6 +200,8 @@ void WorldGradient::set_zero(const World& world, std::size_t num_contacts) {
   half_plane_offset.assign(world.half_planes.size(), 0.0);
   segment_ends.assign(world.segments.size(), {Vec2::Zero(), Vec2::Zero()});
   contact_mu.assign(num_contacts, 0.0);
+  lcp_block_M.setZero();
+  lcp_block_q.setZero();
 }
 
 void accumulate_world_gradient(const World& world, const std::vector<Contact>& contacts, const ContactSystem& s,
@@ -206,6 +210,8 @@ void accumulate_world_gradient(const World& world, const std::vector<Contact>& c
   check_sizes("accumulate_world_gradient", world, contacts, s, dt, applied, &ct, g, "g");
   std::vector<int> block(world.bodies.size(), -1);
   for (std::size_t k = 0; k < s.bodies.size(); ++k) block[s.bodies[k]] = static_cast<int>(k);
+  g.lcp_block_M += ct.lcp_block_M;
+  g.lcp_block_q += ct.lcp_block_q;
 
   // M⁻¹ = (1/m, 1/m, 1/I) and v* = v + Δt (g + u_xy/m, u_τ/I).
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {
@@ -247,6 +253,8 @@ ContactSystem contact_system_tangent(const World& world, const std::vector<Conta
   out.Jn.coeffs().setZero();
   out.Jt.makeCompressed();
   out.Jt.coeffs().setZero();
+  out.lcp_block.M = direction.lcp_block_M;
+  out.lcp_block.q = direction.lcp_block_q;
   std::vector<int> block(world.bodies.size(), -1);
   for (std::size_t k = 0; k < s.bodies.size(); ++k) block[s.bodies[k]] = static_cast<int>(k);
   for (std::size_t k = 0; k < s.bodies.size(); ++k) {

@@ -57,6 +57,9 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                    ConvexSolverCache* cache) {
   if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
+  if (s.lcp_block.enabled)
+    throw InputError("the convex model has no LCP: World::lcp_block (the per-contact LCP correction) applies to the lcp "
+                     "model only");
   const Index nc = s.num_contacts(), nf = s.num_friction();
   ContactSolution out;
 

@@ -33,6 +33,9 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
                                           ConvexSolverCache* cache, const std::vector<signed char>& warm,
                                           int max_iterations) {
   if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
+  if (s.lcp_block.enabled)
+    throw InputError("the convex model has no LCP: World::lcp_block (the per-contact LCP correction) applies to the lcp "
+                     "model only");
   const Index nc = s.num_contacts(), nf = s.num_friction();
   if (!warm.empty() && static_cast<Index>(warm.size()) != nc + nf)
     throw InputError("solve_convex_model_newton: warm needs nc + nf entries");

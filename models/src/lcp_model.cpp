@@ -35,6 +35,22 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
     t.emplace_back(g + f, bp + f, -1.0);
     t.emplace_back(g + f, bm + f, -1.0);
   }
+  // The per-contact correction (world.hpp ContactLcpBlock): every entry stored, zeros too.
+  std::vector<Index> block_index;  // contact c's LCP indices (λn, β⁺, β⁻, γ), or just λn
+  if (s.lcp_block.enabled) {
+    std::vector<Index> friction_of(static_cast<std::size_t>(nc), -1);
+    for (Index f = 0; f < nf; ++f) friction_of[static_cast<std::size_t>(s.friction_rows[f])] = f;
+    block_index.resize(static_cast<std::size_t>(4 * nc), -1);
+    for (Index c = 0; c < nc; ++c) {
+      Index* idx = &block_index[static_cast<std::size_t>(4 * c)];
+      const Index f = friction_of[static_cast<std::size_t>(c)];
+      idx[0] = c;
+      if (f >= 0) idx[1] = bp + f, idx[2] = bm + f, idx[3] = g + f;
+      for (int k = 0; k < 4; ++k)
+        for (int l = 0; l < 4; ++l)
+          if (idx[k] >= 0 && idx[l] >= 0) t.emplace_back(idx[k], idx[l], s.lcp_block.M(k, l));
+    }
+  }
   StewartTrinkleLcp lcp;
   lcp.M.resize(nc + 3 * nf, nc + 3 * nf);
   lcp.M.setFromTriplets(t.begin(), t.end());
@@ -44,6 +60,8 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
   const Vector jt = s.Jt * s.v_star;
   lcp.q.segment(bp, nf) = jt;
   lcp.q.segment(bm, nf) = -jt;
+  for (std::size_t i = 0; i < block_index.size(); ++i)
+    if (block_index[i] >= 0) lcp.q(block_index[i]) += s.lcp_block.q(static_cast<Index>(i % 4));
   return lcp;
 }
 

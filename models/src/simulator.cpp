@@ -85,6 +85,10 @@ Simulator::Simulator(World world, SimulatorSettings settings) : world_(std::move
     if (!std::isfinite(b.gap_offset) || !b.velocity_residual.allFinite())
       throw InputError("bodies[" + std::to_string(i) + "]: gap_offset and velocity_residual must be finite");
   }
+  if (!world_.lcp_block.M.allFinite() || !world_.lcp_block.q.allFinite())
+    throw InputError("lcp_block: the per-contact LCP correction must be finite");
+  if (world_.lcp_block.enabled && settings_.model != ContactModel::lcp)
+    throw InputError("lcp_block: the per-contact LCP correction applies to the lcp contact model only");
   check_extreme_values();
 }
 
@@ -282,8 +286,16 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     try {
       wk.system = assemble_contact_system(world, contacts_, islands[i], dt, applied);
       const ContactSystem& s = wk.system;
+      // The lcp model's fallbacks use the convex model, which has no LCP to correct: they take
+      // the physical model (World::lcp_block off); the island counts as failed either way.
+      auto without_block = [&s]() {
+        if (!s.lcp_block.enabled) return s;
+        ContactSystem p = s;
+        p.lcp_block = ContactLcpBlock{};
+        return p;
+      };
       if (lcp && redundant_island(s)) {  // see kRedundantContactsPerDof: the convex model, reported
-        wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
+        wk.solution = solve_convex_model(without_block(), dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
                                          settings_.convex_softening);
         const std::string why = std::to_string(s.num_contacts()) + " contacts on " + std::to_string(s.num_dofs()) +
                                 " degrees of freedom (bodies inside each other?): too redundant for the LCP model; ";
@@ -330,8 +342,8 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       }
       // A fallback's answer is used, but the island still counts as failed.
       if (!has_solution(wk.solution.status) && lcp && !redundant_island(s)) {  // fallback: the convex model
-        ContactSolution fallback = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
-                                         settings_.convex_softening);
+        ContactSolution fallback = solve_convex_model(without_block(), dt, settings_.qp, settings_.convex_rho,
+                                                      settings_.convex_formulation, settings_.convex_softening);
         fallback.message = wk.solution.message + (has_solution(fallback.status) ? "; convex model used"
                                                                                 : "; convex fallback: " + fallback.message);
         fallback.residual = std::max(fallback.residual, wk.solution.residual);

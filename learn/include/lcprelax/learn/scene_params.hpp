@@ -22,6 +22,18 @@
 //   "class<c>.residual<r><j>" (identity; r = 0, 1, 2 the row vx, vy, ω; j = 0..3 the
 //   feature vx, vy, ω, 1): W of v* += W (vx, vy, ω, 1) (RigidBody::velocity_residual, units
 //   there). Held, they are not in θ and every body keeps the world's values.
+//   Last, the elementwise per-contact correction of the lcp model's LCP (World::lcp_block,
+//   world.hpp; the hard loss only: the relaxed and convex losses refuse it), one for the
+//   whole scene, identity transforms, units of world.hpp, truth 0:
+//   flag block      (20) "lcp_block.M<k><l>" (k, l = 0..3: λn, β⁺, β⁻, γ) and
+//                        "lcp_block.q<k>": B and d entry by entry, nothing imposed;
+//   flag block_tied  (7) "lcp_block.Wnn", "lcp_block.Wnt", "lcp_block.Wtn", "lcp_block.Wtt"
+//                        (a 2×2 correction ΔW of the contact's Delassus block, entered in B
+//                        with the LCP's signs: β⁻'s row and column are −β⁺'s), "lcp_block.mu"
+//                        (B₃₀, the cone row's μ), "lcp_block.qn", "lcp_block.qt"
+//                        (d = (qn, qt, −qt, 0)): the friction rows' antisymmetry imposed.
+//   apply() enables the world's correction when either flag is set; parameters() reads each
+//   entry's value from the world (the first entry a tied parameter sets).
 // Flags choose which kinds are learned (Parameter::learn); held parameters keep their
 // values. Static bodies have no class (they are static geometry held at their values).
 //
@@ -43,11 +55,12 @@ namespace lcprelax::learn {
 struct SceneLearnFlags {
   bool mu = true, mass = true, inertia = true, vertices = true, ground = false;
   bool gap = false, residual = false;  ///< class<c>.gap, class<c>.residual<r><j>
+  bool block = false, block_tied = false;  ///< World::lcp_block, free or tied (at most one of the two)
 };
 
 /// Parses a comma-separated list of "mu", "mass", "inertia", "vertices", "ground", "gap",
-/// "residual" (each at most once, at least one); throws InputError("--learn: ...") naming
-/// an unknown entry.
+/// "residual", "block", "block_tied" (each at most once, at least one, not both block
+/// forms); throws InputError("--learn: ...") naming an unknown entry.
 SceneLearnFlags parse_scene_learn_flags(const std::string& list);
 
 struct SceneParameterSettings {
@@ -80,7 +93,7 @@ class SceneParameterMap {
   const std::vector<int>& body_class() const { return body_class_; }
   int num_classes() const { return static_cast<int>(class_vertices_.size()); }
 
-  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end, gap, residual };
+  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end, gap, residual, lcp_block };
   Kind kind(Index k) const { return kind_[static_cast<std::size_t>(k)]; }
   /// Length scale of parameter k (m), also its Parameter::scale (ξ = θ/scale): its class's radius for vertices and
   /// gaps, the mean class radius for offsets and segment ends, 1 otherwise (residual entries included).
@@ -97,6 +110,7 @@ class SceneParameterMap {
   std::vector<std::pair<int, int>> pairs_;  ///< material pairs with their own μ (per-pair mode)
   Index first_half_plane_ = 0, first_segment_ = 0;
   Index first_gap_ = 0, first_residual_ = 0;  ///< end of the segments; end of the gaps
+  Index first_block_ = 0;                     ///< end of the residual entries
   Index size_ = 0;
   std::vector<Kind> kind_;
   std::vector<double> scale_;
@@ -106,8 +120,9 @@ class SceneParameterMap {
 /// scaled by (1 ± fraction), vertex coordinates moved by ±fraction·0.5·(class radius),
 /// half-plane offsets and segment ends by ±fraction·0.5·(mean class radius), angles by
 /// ±0.1·fraction rad, gaps by ±fraction·0.5·(class radius), residual entries by ±0.1·fraction
-/// (in their own units); random signs from std::mt19937_64(seed) in layout order; only
-/// learned parameters move.
+/// (in their own units); lcp_block entries are kept (their units differ entry by entry and a
+/// fixed size can make the LCP unsolvable); random signs from std::mt19937_64(seed) in layout
+/// order (a sign is drawn for every parameter); only learned parameters move.
 ParameterSet perturb_scene_parameters(const ParameterSet& truth, const SceneParameterMap& map, double fraction,
                                       std::uint64_t seed);
 

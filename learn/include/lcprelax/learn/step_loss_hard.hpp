@@ -26,7 +26,10 @@
 //     ∂ℓ/∂J   = (G + Gᵀ) J D + [∂ℓ/∂qn; ∂ℓ/∂qt] v*ᵀ + [λn; λt] aᵀ        (on J's pattern)
 //     ∂ℓ/∂D_k = (Jᵀ G J)_kk + g_k (Jᵀλ)_k
 //     ∂ℓ/∂v*  = g + Jnᵀ ∂ℓ/∂qn + Jtᵀ ∂ℓ/∂qt
-//     ∂ℓ/∂φ_c = ∂ℓ/∂qn_c / Δt where φ_c > 0, 0 where φ_c < 0 (a kink at φ = 0).
+//     ∂ℓ/∂φ_c = ∂ℓ/∂qn_c / Δt where φ_c > 0, 0 where φ_c < 0 (a kink at φ = 0);
+//   with the per-contact correction (world.hpp ContactLcpBlock) enabled, M_lcp and q hold
+//   B and d on every contact's block, so ∂ℓ/∂B = Σ_c ∂ℓ/∂M_lcp[idx_c, idx_c] and
+//   ∂ℓ/∂d = Σ_c ∂ℓ/∂q[idx_c] (the entries also enter G, ∂ℓ/∂μ and ∂ℓ/∂q as before).
 // Where a wrong prior makes contacts stick the basis does not change with the data and
 // the gradient w.r.t. μ is exactly zero (the known weakness of the hard loss). At a
 // degenerate LCP solution the gradient is that of the final basis (a one-sided one).

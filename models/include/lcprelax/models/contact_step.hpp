@@ -132,7 +132,8 @@ struct StewartTrinkleLcp {
   Vector q;
 };
 
-/// The LCP of the lcp model for an island (W = delassus(s)).
+/// The LCP of the lcp model for an island (W = delassus(s)), with s.lcp_block added to every
+/// contact's own block when enabled (world.hpp ContactLcpBlock).
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt);
 
 /// Solves the lcp model; `warm` (size nc + 3nf, or empty) is tried as the first basis.
@@ -154,6 +155,7 @@ constexpr Index kLiftedMinContacts = 24;
 /// 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
 /// the result has status failed and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
 /// `softening` chooses phase 2's normal softening (validated: InputError when invalid).
+/// The convex model has no LCP: InputError when s.lcp_block is enabled (world.hpp).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
                                    double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic,
                                    const NormalSofteningSettings& softening = {});

@@ -17,7 +17,8 @@
 // Nonphysical terms (RigidBody::gap_offset, RigidBody::velocity_residual, world.hpp): the
 // gap of contact c is φ = c.gap + gap_offset_a (+ gap_offset_b when b is a body), and v* of
 // a body gets + W (vx, vy, ω, 1). Both are skipped where they are exactly 0, so a world
-// without them assembles bit for bit as before.
+// without them assembles bit for bit as before. World::lcp_block is copied as it is (the
+// lcp model's stewart_trinkle_lcp applies it).
 #include <lcprelax/world/world.hpp>
 #include <lcprelax/sparse/types.hpp>
 
@@ -47,6 +48,7 @@ struct ContactSystem {
   Vector phi;                 ///< gap per contact (m)
   Vector mu;                  ///< μ per friction row
   Vector v_star;              ///< free velocity v + Δt M⁻¹ f (3·bodies)
+  ContactLcpBlock lcp_block;  ///< the world's per-contact LCP correction (world.hpp; lcp model only)
 
   Index num_contacts() const { return static_cast<Index>(contacts.size()); }
   Index num_friction() const { return static_cast<Index>(friction_rows.size()); }

@@ -23,7 +23,9 @@
 // ∂/∂I = −Δt ct_ω u_τ/I² (v + Δt g does not depend on m). The nonphysical terms
 // (contact_system.hpp): φ_c = gap_c + gap_offset_a + gap_offset_b gives ∂/∂gap_offset of a
 // body = Σ ct_φ over its contacts; v* += W f gives ∂/∂W = ct_v* fᵀ (f = (vx, vy, ω, 1)),
-// for every body of the island whether its W is zero or not.
+// for every body of the island whether its W is zero or not. The lcp model's per-contact
+// block (World::lcp_block) is data of the LCP, not of the system: its cotangent is passed
+// through (g.lcp_block_* += ct.lcp_block_*; the tangent's lcp_block holds the direction's).
 //
 // Half-plane normals: the derivative is with respect to the normal's two components taken
 // as free (the contact formulas use the normal as given, without normalizing), offset
@@ -51,6 +53,9 @@ struct ContactSystemCotangent {
   Vector mu;        ///< ∂ℓ/∂μ per friction row
   Vector minv;      ///< ∂ℓ/∂M⁻¹ per dof
   Vector v_star;    ///< ∂ℓ/∂v* per dof
+  /// ∂ℓ/∂(ContactLcpBlock M, q) (world.hpp), zero unless the loss uses the lcp model's LCP
+  Eigen::Matrix<double, 4, 4, Eigen::DontAlign> lcp_block_M = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>::Zero();
+  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> lcp_block_q = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>::Zero();
 
   /// Zero values with the shapes of `s` (Jn, Jt: s's sparsity patterns, zero values).
   void set_zero(const ContactSystem& s);
@@ -70,6 +75,9 @@ struct WorldGradient {
   std::vector<double> half_plane_offset;  ///< per half-plane
   std::vector<std::array<Vec2, 2>> segment_ends;  ///< per segment: ∂ℓ/∂a, ∂ℓ/∂b
   std::vector<double> contact_mu;         ///< per world contact (index into the contact list)
+  /// ∂ℓ/∂World::lcp_block (M, q), summed over islands
+  Eigen::Matrix<double, 4, 4, Eigen::DontAlign> lcp_block_M = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>::Zero();
+  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> lcp_block_q = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>::Zero();
 
   /// Zero with the shapes of `world` and `num_contacts` contacts.
   void set_zero(const World& world, std::size_t num_contacts);

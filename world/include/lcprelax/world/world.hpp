@@ -83,12 +83,36 @@ struct FrictionTable {
   }
 };
 
+/// A nonphysical, elementwise correction of the lcp contact model (models/contact_step.hpp,
+/// stewart_trinkle_lcp): the same 4×4 block B and 4-vector d added to every contact's own
+/// rows and columns of the Stewart–Trinkle LCP, in the order k = 0 λn (normal impulse),
+/// 1 β⁺, 2 β⁻ (friction impulses along ±t), 3 γ (sliding speed):
+///     M[idx_c, idx_c] += B,   q[idx_c] += d,
+/// where idx_c are contact c's LCP indices (a contact without a friction row, μ = 0, takes
+/// B₀₀ and d₀ only). Units follow the LCP's rows and columns: rows 0–2 are velocities (m/s)
+/// and row 3 an impulse (N·s); columns 0–2 impulses (N·s) and column 3 a velocity, so
+/// B_kl is in 1/kg for k, l ≤ 2, dimensionless for (k ≤ 2, l = 3) and (k = 3, l ≤ 2), kg for
+/// (3, 3); d₀–d₂ in m/s, d₃ in N·s. The physical model is B = 0, d = 0. Learning it
+/// (learn/scene_params.hpp, flags block and block_tied) asks how much structure a learned
+/// contact model needs: with B and d free, the friction rows' antisymmetry (row β⁻ = −row β⁺
+/// in the impulse columns, d₂ = −d₁) is no longer imposed and, as docs/structure.md derives,
+/// a sticking contact slides at any ε < 0 in it. The convex model has no LCP: a world with
+/// the correction enabled is refused there (InputError). When `enabled` is false nothing is
+/// added (and the LCP's sparsity pattern is the physical one); when true all 16 entries are
+/// stored, zeros included, so that every entry has a gradient.
+struct ContactLcpBlock {
+  bool enabled = false;
+  Eigen::Matrix<double, 4, 4, Eigen::DontAlign> M = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>::Zero();
+  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> q = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>::Zero();
+};
+
 struct World {
   std::vector<RigidBody> bodies;
   std::vector<HalfPlane> half_planes;
   std::vector<Segment> segments;
   Vec2 gravity{0.0, -9.81};  ///< m/s²
   FrictionTable friction;
+  ContactLcpBlock lcp_block;  ///< lcp model only; disabled (physical) by default
 
   /// Whether body index b names a moving body: b ≥ 0 (−1 is a static shape) and not static.
   bool is_dynamic(int b) const { return b >= 0 && !bodies[b].is_static; }
