@@ -44,6 +44,9 @@ SceneObjective::SceneObjective(const SceneDataset& data, const SceneParameterMap
   data_.validate();
   if (map_.body_class().size() != data_.scene.world.bodies.size())
     throw InputError("scene parameters: the map was built for another scene");
+  if (map_.learns_lcp_block() && settings_.method != LossMethod::hard)
+    throw InputError("scene loss: the lcp model's per-contact LCP block (learn block or block_tied) is learned with the "
+                     "hard loss only");
   centers_.resize(data_.transitions.size());
 }
 

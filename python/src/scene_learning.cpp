@@ -9,7 +9,8 @@
 // frame), per half-plane h "half_plane<h>.angle" (rad), "half_plane<h>.offset" (m), per
 // segment "segment<s>.a.x" ... (m), and with learn 'gap' / 'residual' / 'block' / 'block_tied' the nonphysical terms.
 // `learn` chooses the kinds (a comma-separated str or a list of "mu", "mass", "inertia",
-// "vertices", "ground", "gap", "residual"); θ holds only the learned ones (parameter_names),
+// "vertices", "ground", "gap", "residual", "block", "block_tied"; the last two: the lcp
+// model's per-contact LCP correction, method 'hard' only); θ holds only the learned ones (parameter_names),
 // the others stay at the scene's values. true_values: θ of the scene itself (the data's
 // truth); perturbed_values(fraction, seed): a deterministic perturbation of it (the CLI's
 // --perturb). Conventions of evaluate(): objective.hpp.

@@ -182,3 +182,23 @@ def test_scene_bad_input(stack):
     o = lcprelax.SceneObjective(stack, learn="mu", steps=5)
     with pytest.raises(lcprelax.InputError, match="theta has length 2"):
         o.evaluate([0.5, 1.0])
+
+
+def test_scene_lcp_block_is_learned_by_the_hard_loss(stack):
+    # The lcp model's per-contact LCP correction (docs/cli.md, --learn block_tied): its 7
+    # entries after μ, true 0; the hard loss's gradient in them matches central differences
+    # at a small nonzero correction; the other losses refuse it.
+    o = lcprelax.SceneObjective(stack, method="hard", learn="mu,block_tied", steps=30)
+    assert o.parameter_names == ["mu", "lcp_block.Wnn", "lcp_block.Wnt", "lcp_block.Wtn", "lcp_block.Wtt",
+                                 "lcp_block.mu", "lcp_block.qn", "lcp_block.qt"]
+    np.testing.assert_array_equal(o.true_values[1:], 0.0)
+    theta = o.true_values.copy()
+    theta[0] = 0.4
+    theta[1:] = [0.02, 0.003, -0.002, 0.015, 0.01, 0.004, -0.003]
+    loss, grad = o.evaluate(theta)
+    assert loss > 0 and np.all(grad[1:] != 0)
+    np.testing.assert_allclose(grad, central_difference(o, theta, rel=1e-5), rtol=1e-4,
+                               atol=1e-6 * np.abs(grad).max())
+    for method in ("relaxed", "convex"):
+        with pytest.raises(lcprelax.InputError, match="hard loss only"):
+            lcprelax.SceneObjective(stack, method=method, learn="mu,block", steps=5)

@@ -90,6 +90,8 @@ class SceneParameterMap {
   Vector gradient(const World& world, const std::vector<Contact>& contacts, const WorldGradient& g) const;
 
   Index size() const { return size_; }
+  /// Whether θ holds World::lcp_block's entries (flag block or block_tied).
+  bool learns_lcp_block() const { return settings_.learn.block || settings_.learn.block_tied; }
   const std::vector<int>& body_class() const { return body_class_; }
   int num_classes() const { return static_cast<int>(class_vertices_.size()); }
 
