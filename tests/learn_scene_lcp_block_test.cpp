@@ -7,13 +7,17 @@
 //   (row and column β⁻ = −β⁺ on the impulse entries, d₂ = −d₁) and touches nothing else;
 // - ∂ℓ/∂(B, d) of the hard loss against central differences of the whole pipeline, free and
 //   tied, on steps of a small generated pile at a nonzero block;
-// - refusals: the relaxed and convex losses and the convex Simulator, both flags at once,
+// - refusals: the relaxed and convex losses (SceneObjective and the step losses themselves),
+//   the convex Simulator (the lcp one falls back to the physical convex model), both flags at once,
 //   the polygon CLI's flags, a non-finite block.
 #include "learn_scene_fd_support.hpp"
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/polygon_params.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
+#include <lcprelax/learn/step_loss_convex.hpp>
+#include <lcprelax/learn/step_loss_relaxed.hpp>
+#include <lcprelax/learn/step_loss_relaxed_dual.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/simulator.hpp>
 
@@ -206,23 +210,23 @@ TEST(SceneLcpBlock, TiedBlockGradientMatchesCentralDifferences) { check_block_gr
 TEST(SceneLcpBlock, RefusedWhereThereIsNoLcp) {
   const SceneDataset data = block_pile(5);
   const SceneParameterMap map(data.scene.world, learn("mu,block"));
-  const ParameterSet theta = map.parameters(data.scene.world);
   for (LossMethod m : {LossMethod::relaxed, LossMethod::convex}) {
     SceneLossSettings ls;
     ls.method = m;
-    SceneObjective objective(data, map, ls);
-    objective.prepare(theta, 1);
-    bool refused = false;
-    try {
-      const SampleResult r = objective.evaluate(0, theta, 0);
-      refused = !r.ok && r.message.find("lcp_block") != std::string::npos;
-    } catch (const InputError& e) {
-      refused = std::string(e.what()).find("lcp_block") != std::string::npos;
-    }
-    EXPECT_TRUE(refused) << to_string(m) << " loss took the lcp block";
+    EXPECT_THROW(SceneObjective(data, map, ls), InputError) << to_string(m);
   }
   World w = data.scene.world;
   w.lcp_block.enabled = true;
+  {  // the step losses themselves, on an island of the world with the block
+    const StepContacts found = find_step_contacts(w, data.scene.settings);
+    ASSERT_FALSE(found.islands.empty());
+    const ContactSystem s = assemble_contact_system(w, found.contacts, found.islands[0], data.scene.settings.dt);
+    const Vector target = s.v_star;
+    EXPECT_THROW(relaxed_step_loss(s, target, data.scene.settings.dt), InputError);
+    EXPECT_THROW(relaxed_dual_step_loss(s, target, data.scene.settings.dt), InputError);
+    EXPECT_THROW(convex_step_loss(s, target, data.scene.settings.dt, ConvexStepLossSettings{}), InputError);
+    EXPECT_NO_THROW(hard_step_loss(s, target, data.scene.settings.dt));
+  }
   SimulatorSettings convex = data.scene.settings;
   convex.model = ContactModel::convex;
   EXPECT_THROW(Simulator(w, convex), InputError);
