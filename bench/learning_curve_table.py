@@ -77,8 +77,8 @@ def scene_table(paths):
     runs, order = load_runs(paths, ("scene", "param", "method"))
     print()
     print("Polygon and 30-body pile (bench/run_learning_curves_scene; loss `relaxed` = relaxed step loss by "
-          "Adam, `relaxed/lbfgs` by L-BFGS, `hard/lbfgs` the hard loss by L-BFGS; N counts transitions of the "
-          "whole scene):")
+          "Adam, `relaxed/lbfgs` by L-BFGS, `hard/lbfgs` the hard loss by L-BFGS, `relaxed+hard/lbfgs` the hard loss "
+          "from the physical parameters the relaxed loss learned first; N counts transitions of the whole scene):")
     print()
     print("| scene | parameterization | loss | seeds | N for median error ≤ 1% | N for every seed ≤ 1% | N used below | "
           "median error | mode error | failed predictions | failed evaluations in training |")

@@ -58,6 +58,9 @@ run "$B/run_learning_curves_scene" --scene polygon --params residual --sizes 10,
 run "$B/run_learning_curves_scene" --scene polygon --params physical,structured --optimizer lbfgs --epochs 100 \
   --sizes 10,30,100,300,1000 --seeds 5 --test 400 --sanity-size 0 --csv "$R/learning_curves_scene_polygon_lbfgs.csv" \
   > "$R/learning_curves_scene_polygon_lbfgs.txt"
+run "$B/run_learning_curves_scene" --scene polygon --params physical --optimizer lbfgs --epochs 100 \
+  --sizes 3000,10000 --seeds 5 --test 400 --sanity-size 0 --csv "$R/learning_curves_scene_polygon_lbfgs_10k.csv" \
+  > "$R/learning_curves_scene_polygon_lbfgs_10k.txt"
 # The hard loss with the lcp model's per-contact LCP block, free (elementwise) and tied.
 # L-BFGS (as the block's curves): Adam's fixed step (0.02 per entry) moves the block's entries
 # (1/kg, kg, m/s) off the truth even when started there (sanity line of an Adam run: 38% error).
@@ -65,13 +68,23 @@ run "$B/run_learning_curves_scene" --scene polygon --params physical,block_tied,
   --epochs 100 --sizes 10,30,100,300,1000,3000,10000 --seeds 5 --test 400 --sanity-size 100 \
   --csv "$R/learning_curves_scene_polygon_hard.csv" --plot "$R/plots/learning_curves_scene_polygon_hard.png" \
   > "$R/learning_curves_scene_polygon_hard.txt"
+# Two-stage: the physical parameters by the relaxed loss (L-BFGS) first, then the hard loss.
+run "$B/run_learning_curves_scene" --scene polygon --params physical,block_tied,block --loss hard --optimizer lbfgs \
+  --epochs 100 --start relaxed --sizes 10,30,100,300,1000,3000 --seeds 5 --test 400 --sanity-size 0 \
+  --csv "$R/learning_curves_scene_polygon_hard_staged.csv" \
+  --plot "$R/plots/learning_curves_scene_polygon_hard_staged.png" > "$R/learning_curves_scene_polygon_hard_staged.txt"
 run "$B/run_learning_curves_scene" --scene pile30 --params physical,structured --sizes 10,30 --seeds 5 \
   --test 30 --sanity-size 10 --epochs 300 --csv "$R/learning_curves_scene_pile30.csv" \
   --plot "$R/plots/learning_curves_scene_pile30.png" > "$R/learning_curves_scene_pile30.txt"
+# The pile's physical model at N = 100 (about 10 min per run on 1 thread).
+run "$B/run_learning_curves_scene" --scene pile30 --params physical --sizes 100 --seeds 5 --test 30 --sanity-size 0 \
+  --epochs 300 --csv "$R/learning_curves_scene_pile30_n100.csv" > "$R/learning_curves_scene_pile30_n100.txt"
 { head -1 "$R/learning_curves_scene_polygon.csv"
-  for f in polygon polygon_residual polygon_lbfgs polygon_hard pile30; do tail -n +2 "$R/learning_curves_scene_$f.csv"; done
+  for f in polygon polygon_residual polygon_lbfgs polygon_lbfgs_10k polygon_hard polygon_hard_staged pile30 pile30_n100; do
+    tail -n +2 "$R/learning_curves_scene_$f.csv"
+  done
 } > "$R/learning_curves_scene.csv"
-cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,polygon_hard,pile30}.txt > "$R/learning_curves_scene.txt"
+cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,polygon_lbfgs_10k,polygon_hard,polygon_hard_staged,pile30,pile30_n100}.txt > "$R/learning_curves_scene.txt"
 run python3 bench/learning_curve_table.py --csv "$R/learning_curves.csv" --csv "$R/learning_curves_hard_10k.csv" \
   --scene-csv "$R/learning_curves_scene.csv" > "$R/learning_curves.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"
