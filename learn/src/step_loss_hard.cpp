@@ -178,11 +178,9 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   G.setFromTriplets(gt.begin(), gt.end());
   for (Index f = 0; f < nf; ++f) r.grad.mu(f) = lg.dM.coeff(gm + f, s.friction_rows[static_cast<std::size_t>(f)]);
   if (s.lcp_block.enabled) {  // ∂ℓ/∂(B, d) of World::lcp_block: the sum over the contacts' blocks
-    std::vector<Index> friction_of(static_cast<std::size_t>(nc), -1);
-    for (Index f = 0; f < nf; ++f) friction_of[static_cast<std::size_t>(s.friction_rows[f])] = f;
+    const std::vector<Index> block_index = stewart_trinkle_contact_indices(s);
     for (Index c = 0; c < nc; ++c) {
-      const Index f = friction_of[static_cast<std::size_t>(c)];
-      const Index idx[4] = {c, f >= 0 ? bp + f : -1, f >= 0 ? bm + f : -1, f >= 0 ? gm + f : -1};
+      const Index* idx = &block_index[static_cast<std::size_t>(4 * c)];
       for (int k = 0; k < 4; ++k) {
         if (idx[k] < 0) continue;
         r.grad.lcp_block_q(k) += lg.dq(idx[k]);

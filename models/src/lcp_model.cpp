@@ -36,16 +36,11 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
     t.emplace_back(g + f, bm + f, -1.0);
   }
   // The per-contact correction (world.hpp ContactLcpBlock): every entry stored, zeros too.
-  std::vector<Index> block_index;  // contact c's LCP indices (λn, β⁺, β⁻, γ), or just λn
+  std::vector<Index> block_index;
   if (s.lcp_block.enabled) {
-    std::vector<Index> friction_of(static_cast<std::size_t>(nc), -1);
-    for (Index f = 0; f < nf; ++f) friction_of[static_cast<std::size_t>(s.friction_rows[f])] = f;
-    block_index.resize(static_cast<std::size_t>(4 * nc), -1);
+    block_index = stewart_trinkle_contact_indices(s);
     for (Index c = 0; c < nc; ++c) {
-      Index* idx = &block_index[static_cast<std::size_t>(4 * c)];
-      const Index f = friction_of[static_cast<std::size_t>(c)];
-      idx[0] = c;
-      if (f >= 0) idx[1] = bp + f, idx[2] = bm + f, idx[3] = g + f;
+      const Index* idx = &block_index[static_cast<std::size_t>(4 * c)];
       for (int k = 0; k < 4; ++k)
         for (int l = 0; l < 4; ++l)
           if (idx[k] >= 0 && idx[l] >= 0) t.emplace_back(idx[k], idx[l], s.lcp_block.M(k, l));
@@ -63,6 +58,17 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
   for (std::size_t i = 0; i < block_index.size(); ++i)
     if (block_index[i] >= 0) lcp.q(block_index[i]) += s.lcp_block.q(static_cast<Index>(i % 4));
   return lcp;
+}
+
+std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s) {
+  const Index nc = s.num_contacts(), nf = s.num_friction();
+  std::vector<Index> idx(static_cast<std::size_t>(4 * nc), -1);
+  for (Index c = 0; c < nc; ++c) idx[static_cast<std::size_t>(4 * c)] = c;
+  for (Index f = 0; f < nf; ++f) {
+    Index* i = &idx[static_cast<std::size_t>(4 * s.friction_rows[f])];
+    i[1] = nc + f, i[2] = nc + nf + f, i[3] = nc + 2 * nf + f;
+  }
+  return idx;
 }
 
 namespace {

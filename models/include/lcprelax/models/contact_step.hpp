@@ -136,6 +136,10 @@ struct StewartTrinkleLcp {
 /// contact's own block when enabled (world.hpp ContactLcpBlock).
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt);
 
+/// Each contact's indices in the LCP's z = [λn (nc), β⁺, β⁻, γ (nf each)]: 4 per contact in the
+/// order λn, β⁺, β⁻, γ, with −1 for the last three of a contact without a friction row.
+std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s);
+
 /// Solves the lcp model; `warm` (size nc + 3nf, or empty) is tried as the first basis.
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm = {});
