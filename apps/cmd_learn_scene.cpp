@@ -22,7 +22,7 @@
 // validation.
 // --learn gap,residual: per class a gap offset (m), a 3×4 residual W on v* (scene_params.hpp).
 // --learn block / block_tied: the lcp model's per-contact LCP correction (World::lcp_block),
-// entry by entry or with the friction rows' antisymmetry imposed; --model lcp --method hard.
+// entry by entry or with the friction rows' antisymmetry imposed; --method hard only.
 // --softening (convex only): the normal softening of the convex loss and of the generated
 // data (models/normal_softening.hpp); default the scene's ("softening" in the scene JSON,
 // exp_phi for the learning pile). With --data the data are the file's, whatever it says.
@@ -353,7 +353,7 @@ Command add_learn_scene_command(CLI::App& learn) {
                   "shapes), gap (a contact distance offset per shape), residual (a linear velocity correction "
                   "per shape), block (a 4x4 correction of every contact's block of the exact model's LCP and of its "
                   "constant, all 20 entries free) or block_tied (the same with the friction rows' antisymmetry imposed, "
-                  "7 entries); block and block_tied need --model lcp --method hard")->capture_default_str();
+                  "7 entries); block and block_tied need --method hard")->capture_default_str();
   app->add_option("--epochs", o->epochs, "most training epochs (passes over the data); 0: only evaluate")->capture_default_str();
   add_learn_stop_options(*app, o->stop);
   app->add_option("--batch", o->batch, "transitions per optimizer step (0: all training transitions)")->capture_default_str();

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <optional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -288,11 +289,14 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       const ContactSystem& s = wk.system;
       // The lcp model's fallbacks use the convex model, which has no LCP to correct: they take
       // the physical model (World::lcp_block off); the island counts as failed either way.
-      auto without_block = [&s]() {
+      std::optional<ContactSystem> stripped;  // made only when a fallback runs with the block on
+      auto without_block = [&s, &stripped]() -> const ContactSystem& {
         if (!s.lcp_block.enabled) return s;
-        ContactSystem p = s;
-        p.lcp_block = ContactLcpBlock{};
-        return p;
+        if (!stripped) {
+          stripped = s;
+          stripped->lcp_block = ContactLcpBlock{};
+        }
+        return *stripped;
       };
       if (lcp && redundant_island(s)) {  // see kRedundantContactsPerDof: the convex model, reported
         wk.solution = solve_convex_model(without_block(), dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,

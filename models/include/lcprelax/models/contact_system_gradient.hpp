@@ -54,8 +54,8 @@ struct ContactSystemCotangent {
   Vector minv;      ///< ∂ℓ/∂M⁻¹ per dof
   Vector v_star;    ///< ∂ℓ/∂v* per dof
   /// ∂ℓ/∂(ContactLcpBlock M, q) (world.hpp), zero unless the loss uses the lcp model's LCP
-  Eigen::Matrix<double, 4, 4, Eigen::DontAlign> lcp_block_M = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>::Zero();
-  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> lcp_block_q = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>::Zero();
+  Mat44 lcp_block_M = Mat44::Zero();
+  Vec4 lcp_block_q = Vec4::Zero();
 
   /// Zero values with the shapes of `s` (Jn, Jt: s's sparsity patterns, zero values).
   void set_zero(const ContactSystem& s);
@@ -76,8 +76,8 @@ struct WorldGradient {
   std::vector<std::array<Vec2, 2>> segment_ends;  ///< per segment: ∂ℓ/∂a, ∂ℓ/∂b
   std::vector<double> contact_mu;         ///< per world contact (index into the contact list)
   /// ∂ℓ/∂World::lcp_block (M, q), summed over islands
-  Eigen::Matrix<double, 4, 4, Eigen::DontAlign> lcp_block_M = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>::Zero();
-  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> lcp_block_q = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>::Zero();
+  Mat44 lcp_block_M = Mat44::Zero();
+  Vec4 lcp_block_q = Vec4::Zero();
 
   /// Zero with the shapes of `world` and `num_contacts` contacts.
   void set_zero(const World& world, std::size_t num_contacts);

@@ -21,6 +21,9 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 /// 3×4, unaligned (a member of RigidBody, which lives in std::vector).
 using Mat34 = Eigen::Matrix<double, 3, 4, Eigen::DontAlign>;
+/// 4×4 and 4-vector, unaligned (members of structs that live in std::vector).
+using Mat44 = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>;
+using Vec4 = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>;
 
 struct Polygon {
   std::vector<Vec2> vertices;  ///< body frame, counter-clockwise, centroid at the origin (m)
@@ -102,8 +105,8 @@ struct FrictionTable {
 /// stored, zeros included, so that every entry has a gradient.
 struct ContactLcpBlock {
   bool enabled = false;
-  Eigen::Matrix<double, 4, 4, Eigen::DontAlign> M = Eigen::Matrix<double, 4, 4, Eigen::DontAlign>::Zero();
-  Eigen::Matrix<double, 4, 1, Eigen::DontAlign> q = Eigen::Matrix<double, 4, 1, Eigen::DontAlign>::Zero();
+  Mat44 M = Mat44::Zero();
+  Vec4 q = Vec4::Zero();
 };
 
 struct World {
