@@ -79,12 +79,27 @@ run "$B/run_learning_curves_scene" --scene pile30 --params physical,structured -
 # The pile's physical model at N = 100 (about 10 min per run on 1 thread).
 run "$B/run_learning_curves_scene" --scene pile30 --params physical --sizes 100 --seeds 5 --test 30 --sanity-size 0 \
   --epochs 300 --csv "$R/learning_curves_scene_pile30_n100.csv" > "$R/learning_curves_scene_pile30_n100.txt"
+# The friction table's normal softness (compliance, erp: an implicit spring–damper per material
+# pair) learned alongside the physical parameters: on the rigid truth (relaxed; relaxed then
+# hard), and on data of a soft truth (compliance 0.1 1/kg, erp 0.2) where the rigid physical
+# model is misspecified.
+run "$B/run_learning_curves_scene" --scene polygon --params softness --optimizer lbfgs --epochs 100 \
+  --sizes 10,30,100,300,1000 --seeds 5 --test 400 --sanity-size 100 \
+  --csv "$R/learning_curves_scene_polygon_softness.csv" > "$R/learning_curves_scene_polygon_softness.txt"
+run "$B/run_learning_curves_scene" --scene polygon --params softness --loss hard --optimizer lbfgs --epochs 100 \
+  --start relaxed --sizes 10,30,100,300,1000 --seeds 5 --test 400 --sanity-size 0 \
+  --csv "$R/learning_curves_scene_polygon_softness_staged.csv" > "$R/learning_curves_scene_polygon_softness_staged.txt"
+run "$B/run_learning_curves_scene" --scene polygon --params physical,softness --true-compliance 0.1 --true-erp 0.2 \
+  --optimizer lbfgs --epochs 100 --sizes 10,30,100,300,1000 --seeds 5 --test 400 --sanity-size 100 \
+  --csv "$R/learning_curves_scene_polygon_soft_truth.csv" \
+  --plot "$R/plots/learning_curves_scene_polygon_soft_truth.png" > "$R/learning_curves_scene_polygon_soft_truth.txt"
 { head -1 "$R/learning_curves_scene_polygon.csv"
-  for f in polygon polygon_residual polygon_lbfgs polygon_lbfgs_10k polygon_hard polygon_hard_staged pile30 pile30_n100; do
+  for f in polygon polygon_residual polygon_lbfgs polygon_lbfgs_10k polygon_hard polygon_hard_staged \
+           polygon_softness polygon_softness_staged polygon_soft_truth pile30 pile30_n100; do
     tail -n +2 "$R/learning_curves_scene_$f.csv"
   done
 } > "$R/learning_curves_scene.csv"
-cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,polygon_lbfgs_10k,polygon_hard,polygon_hard_staged,pile30,pile30_n100}.txt > "$R/learning_curves_scene.txt"
+cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,polygon_lbfgs_10k,polygon_hard,polygon_hard_staged,polygon_softness,polygon_softness_staged,polygon_soft_truth,pile30,pile30_n100}.txt > "$R/learning_curves_scene.txt"
 run python3 bench/learning_curve_table.py --csv "$R/learning_curves.csv" --csv "$R/learning_curves_hard_10k.csv" \
   --scene-csv "$R/learning_curves_scene.csv" > "$R/learning_curves.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"

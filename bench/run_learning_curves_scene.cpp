@@ -4,7 +4,8 @@
 // run_learning_curves.cpp.
 //
 //   run_learning_curves_scene --scene polygon|pile30 [--sizes 10,30,100,300,1000] [--seeds 5]
-//     [--params physical,structured,residual,block,block_tied] [--loss relaxed|hard] [--noise 0.02]
+//     [--params physical,structured,residual,block,block_tied,softness] [--loss relaxed|hard]
+//     [--noise 0.02] [--true-compliance C --true-erp E]
 //     [--optimizer adam|lbfgs|adam+lbfgs]
 //     [--epochs 300] [--test 400] [--sanity-size 30] [--csv OUT.csv] [--plot OUT.png] > OUT.txt
 //
@@ -16,7 +17,10 @@
 // the first N transitions generated with seed 1000 s + N, plus N(0, (σ·RMS)²) noise on every
 // dynamic body's recorded next velocity, RMS taken over the set per kind (vx and vy
 // together in m/s; ω in rad/s), σ = --noise. Held-out set: the first --test noise-free
-// transitions of seed 777777 + s.
+// transitions of seed 777777 + s. --true-compliance C, --true-erp E: the data come from a
+// truth with that normal softness (an implicit spring–damper, world.hpp FrictionTable; default
+// 0, rigid), while every parameterization's scene is rigid (softness learned from 0): the
+// physical model is then misspecified. The sanity lines' "true θ" is the rigid one.
 // Parameterizations (learn/scene_params.hpp; θ₀ = the physical parameters perturbed by
 // --perturb as perturb_scene_parameters does with seed s, the nonphysical terms at 0):
 //   physical   μ (global), mass, inertia, vertices per shape class (the scene path's default);
@@ -26,7 +30,10 @@
 //   block      physical + the lcp model's per-contact LCP correction (World::lcp_block) with
 //              all 20 entries free (elementwise: nothing of the LCP's structure imposed);
 //   block_tied physical + the same correction with the friction rows' antisymmetry imposed
-//              (7 entries); both start at 0 and need --loss hard.
+//              (7 entries); both start at 0 and need --loss hard;
+//   softness   physical + the friction table's normal compliance and erp (per listed material
+//              pair, world.hpp FrictionTable: an implicit spring–damper), from 0 (the rigid
+//              truth); --loss relaxed or hard.
 // --start relaxed: a two-stage fit, θ₀ = the physical parameters learned first by the relaxed
 // loss (L-BFGS, 100 iterations, from the perturbed start, same data; shared by every
 // parameterization of a (N, seed)), then the parameterization by --loss from there (the
@@ -89,11 +96,18 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-Problem make_problem(const std::string& scene, int n, std::uint64_t seed) {
+// The truth's normal softness (--true-compliance, --true-erp); the learners' scene stays rigid.
+struct TrueSoftness {
+  double compliance = 0.0, erp = 0.0;
+};
+
+Problem make_problem(const std::string& scene, int n, std::uint64_t seed, const TrueSoftness& soft) {
   Problem p;
   if (scene == "polygon") {
     PolygonDataSettings g;
     g.seed = seed;
+    g.compliance = soft.compliance;
+    g.erp = soft.erp;
     g.trajectories = std::max(2, n / 30 + 2);  // ~45 contact transitions per throw of 60 steps
     PolygonDataset d = generate_polygon_dataset(reference_polygon_model(), g);
     if (static_cast<int>(d.transitions.size()) < n) throw std::runtime_error("polygon: too few transitions");
@@ -107,7 +121,11 @@ Problem make_problem(const std::string& scene, int n, std::uint64_t seed) {
     SceneDatasetSettings g;
     g.steps = n;
     g.seed = seed;
-    p.data = generate_scene_dataset(make_learning_pile(po), g);
+    Scene truth = make_learning_pile(po);
+    truth.world.friction.default_compliance = soft.compliance;
+    truth.world.friction.default_erp = soft.erp;
+    p.data = generate_scene_dataset(truth, g);
+    p.data.scene.world.friction.default_compliance = p.data.scene.world.friction.default_erp = 0.0;
     if (static_cast<int>(p.data.transitions.size()) > n) p.data.transitions.resize(static_cast<std::size_t>(n));
     p.sim = p.data.scene.settings;
   }
@@ -137,9 +155,16 @@ SceneParameterSettings param_settings(const std::string& name) {
   else if (name == "residual") s.learn = SceneLearnFlags{false, false, false, false, false, false, true};
   else if (name == "block") s.learn.block = true;
   else if (name == "block_tied") s.learn.block_tied = true;
+  else if (name == "softness") s.learn.softness = true, s.mu_per_pair = true;
   else if (name != "physical")
-    throw InputError("--params: unknown '" + name + "' (physical, structured, residual, block, block_tied)");
+    throw InputError("--params: unknown '" + name + "' (physical, structured, residual, block, block_tied, softness)");
   return s;
+}
+
+bool physical_kind(SceneParameterMap::Kind k) {
+  using K = SceneParameterMap::Kind;
+  return k == K::mu || k == K::mass || k == K::inertia || k == K::vertex || k == K::angle || k == K::offset ||
+         k == K::segment_end;
 }
 
 // θ₀: the physical parameters perturbed (the physical layout's draws), the other terms at the truth (0).
@@ -150,8 +175,7 @@ ParameterSet initial_theta(const World& world, const SceneParameterMap& map, dou
   for (Index k = 0; k < theta.size(); ++k) {
     const std::string& name = theta[k].name;
     if (name.rfind("mu[", 0) == 0) theta.set_value(name, p0.value("mu"));
-    else if (map.kind(k) != SceneParameterMap::Kind::gap && map.kind(k) != SceneParameterMap::Kind::residual &&
-             map.kind(k) != SceneParameterMap::Kind::lcp_block)
+    else if (physical_kind(map.kind(k)))  // the nonphysical terms keep the truth
       theta.set_value(name, p0.value(name));
   }
   return theta;
@@ -279,7 +303,7 @@ int main(int argc, char** argv) {
   double noise = 0.02, perturb = 0.25, stick_tol = 1e-3;
   app.add_option("--scene", scene, "polygon or pile30")->check(CLI::IsMember({"polygon", "pile30"}));
   app.add_option("--sizes", sizes_list, "training set sizes (transitions)");
-  app.add_option("--params", params_list, "parameterizations: physical, structured, residual, block, block_tied");
+  app.add_option("--params", params_list, "parameterizations: physical, structured, residual, block, block_tied, softness");
   app.add_option("--loss", loss_name, "training loss: relaxed or hard")->check(CLI::IsMember({"relaxed", "hard"}));
   std::string start = "perturbed";
   app.add_option("--start", start,
@@ -296,6 +320,10 @@ int main(int argc, char** argv) {
   app.add_option("--lr", lr, "Adam learning rate");
   app.add_option("--noise", noise, "relative noise on the training next velocities");
   app.add_option("--perturb", perturb, "relative perturbation of the initial physical parameters");
+  TrueSoftness soft;
+  app.add_option("--true-compliance", soft.compliance,
+                 "normal compliance (1/kg) of the data's truth (world.hpp FrictionTable); the models start rigid");
+  app.add_option("--true-erp", soft.erp, "erp of the data's truth, in [0, 1]");
   app.add_option("--stick-tol", stick_tol, "tangential speed (m/s) below which a contact sticks");
   app.add_option("--sanity-size", sanity_size, "training transitions of the sanity run from the truth (0: skip)");
   app.add_option("--csv", csv_path, "CSV of every run");
@@ -306,12 +334,17 @@ int main(int argc, char** argv) {
   for (const std::string& s : bench::split_list(sizes_list)) sizes.push_back(std::stoi(s));
 
   const LossMethod loss = loss_name == "hard" ? LossMethod::hard : LossMethod::relaxed;
+  // The CSV's scene column: "<scene>_soft" for data from a soft truth (a different problem).
+  const std::string scene_label = soft.compliance != 0.0 || soft.erp != 0.0 ? scene + "_soft" : scene;
+  if (scene_label != scene)
+    std::printf("Data from a soft truth: normal compliance %g 1/kg, erp %g (the models start rigid)\n", soft.compliance,
+                soft.erp);
   std::printf("Learning curves, %s (%s loss, %s: %d epochs, lr %g, L-BFGS polish <= %d; noise %g relative on "
               "v+, perturb %g, %d held-out transitions, stick: |Jt v+| <= %g m/s)\n",
               scene.c_str(), loss_name.c_str(), optimizer.c_str(), epochs, optimizer == "lbfgs" ? 1.0 : lr, optimizer == "adam+lbfgs" ? polish : 0, noise, perturb,
               test_size, stick_tol);
   std::map<int, Problem> tests;
-  for (int s = 1; s <= seeds; ++s) tests[s] = make_problem(scene, test_size, 777777 + s);
+  for (int s = 1; s <= seeds; ++s) tests[s] = make_problem(scene, test_size, 777777 + s, soft);
   {
     const Problem& test = tests[1];
     std::printf("held-out set of seed 1: %zu transitions, %zu bodies\n", test.data.transitions.size(),
@@ -323,7 +356,7 @@ int main(int argc, char** argv) {
                   "failed %d, %d active contacts\n",
                   param.c_str(), static_cast<long>(map.size()), r.test_error, r.mode_error, r.failed, r.contacts);
       if (sanity_size > 0) {
-        const Problem clean = make_problem(scene, sanity_size, 1000 + sanity_size);
+        const Problem clean = make_problem(scene, sanity_size, 1000 + sanity_size, soft);
         ParameterSet truth = map.parameters(clean.data.scene.world);
         for (const std::string& opt : {std::string("lbfgs"), optimizer}) {
           const RunResult q = run(clean, test, param, &truth, perturb, 1, epochs, stick_tol, opt, lr, polish, loss);
@@ -368,7 +401,7 @@ int main(int argc, char** argv) {
     for (int n : sizes) {
       Cell& c = cells[param][n];
       for (int s = 1; s <= seeds; ++s) {
-        Problem train_data = make_problem(scene, n, static_cast<std::uint64_t>(1000 * s + n));
+        Problem train_data = make_problem(scene, n, static_cast<std::uint64_t>(1000 * s + n), soft);
         add_noise(train_data.data, noise, static_cast<std::uint64_t>(31 * s + n));
         ParameterSet* physical_start = first_stage(train_data, n, s);
         ParameterSet start_theta;
@@ -380,7 +413,7 @@ int main(int argc, char** argv) {
         }
         const RunResult r = run(train_data, tests[s], param, physical_start ? &start_theta : nullptr, perturb,
                                 static_cast<std::uint64_t>(s), epochs, stick_tol, optimizer, lr, polish, loss);
-        csv << scene << ',' << param << ',' << method << ',' << n << ',' << s << ',' << r.epochs << ',' << r.converged << ','
+        csv << scene_label << ',' << param << ',' << method << ',' << n << ',' << s << ',' << r.epochs << ',' << r.converged << ','
             << r.train_loss << ',' << r.test_error << ',' << r.mode_error << ',' << r.contacts << ',' << r.failed << ','
             << r.train_failed << ',' << r.seconds << '\n';
         csv.flush();

@@ -53,7 +53,10 @@ std::vector<Contact> find_contacts(const World& world, const CollisionSettings& 
       c.point = m.points[k].point;
       c.normal = m.normal;
       c.gap = m.points[k].gap;
-      c.mu = world.friction.mu(world.bodies[a].material, material_b);
+      const int material_a = world.bodies[a].material;
+      c.mu = world.friction.mu(material_a, material_b);
+      c.compliance = world.friction.compliance(material_a, material_b);
+      c.erp = world.friction.erp(material_a, material_b);
       c.feature = m.points[k].feature;
       contacts.push_back(c);
     }

@@ -34,6 +34,10 @@ std::string PolygonDataSettings::validation_error() const {
   if (!nonneg(spin)) return "spin: must be finite and >= 0";
   if (!nonneg(force_scale)) return "force_scale: must be finite and >= 0";
   if (!nonneg(noise)) return "noise: must be finite and >= 0";
+  if (!nonneg(compliance)) return "compliance: must be finite and >= 0";
+  if (!(erp >= 0.0 && erp <= 1.0)) return "erp: must be in [0, 1]";
+  if ((compliance != 0.0 || erp != 0.0) && model != ContactModel::lcp)
+    return "compliance, erp: the normal softness needs model lcp";
   return {};
 }
 
@@ -54,6 +58,8 @@ PolygonDataset generate_polygon_dataset(const PolygonModel& truth, const Polygon
 
   for (int traj = 0; traj < settings.trajectories; ++traj) {
     Scene scene = polygon_scene(truth, settings.dt, settings.gravity, settings.margin);
+    scene.world.friction.default_compliance = settings.compliance;
+    scene.world.friction.default_erp = settings.erp;
     RigidBody& body = scene.world.bodies[0];
     const double angle = uniform(rng, -kPi, kPi);
     // Place the lowest vertex (along the ground normal) drop_height·[0.5, 1] above the

@@ -85,7 +85,7 @@ const std::vector<LcpBlockDirection>& lcp_block_directions(bool tied) {
 }  // namespace
 
 SceneLearnFlags parse_scene_learn_flags(const std::string& list) {
-  SceneLearnFlags f{false, false, false, false, false, false, false, false, false};
+  SceneLearnFlags f{false, false, false, false, false, false, false, false, false, false};
   std::stringstream ss(list);
   std::string item;
   int count = 0;
@@ -99,10 +99,11 @@ SceneLearnFlags parse_scene_learn_flags(const std::string& list) {
                    : item == "residual" ? &f.residual
                    : item == "block" ? &f.block
                    : item == "block_tied" ? &f.block_tied
+                   : item == "softness" ? &f.softness
                                       : nullptr;
     if (!target)
       throw InputError("--learn: unknown parameter kind '" + item +
-                       "' (expected mu, mass, inertia, vertices, ground, gap, residual, block, block_tied)");
+                       "' (expected mu, mass, inertia, vertices, ground, gap, residual, block, block_tied, softness)");
     if (*target) throw InputError("--learn: '" + item + "' given twice");
     *target = true;
     ++count;
@@ -177,6 +178,16 @@ SceneParameterMap::SceneParameterMap(const World& world, const SceneParameterSet
   first_block_ = static_cast<Index>(kind_.size());
   if (settings.learn.block || settings.learn.block_tied)
     for (std::size_t k = 0; k < lcp_block_directions(settings.learn.block_tied).size(); ++k) push(Kind::lcp_block, 1.0);
+  first_softness_ = static_cast<Index>(kind_.size());
+  if (settings.learn.softness) {
+    // Compliance in units of the classes' mean 1/m (the size of a Delassus diagonal).
+    double inverse_mass = 0.0;
+    for (int c = 0; c < classes; ++c) {
+      const auto it = std::find(body_class_.begin(), body_class_.end(), c);
+      inverse_mass += 1.0 / world.bodies[static_cast<std::size_t>(it - body_class_.begin())].mass / classes;
+    }
+    for (std::size_t k = 0; k <= pairs_.size(); ++k) push(Kind::compliance, inverse_mass), push(Kind::erp, 1.0);
+  }
   size_ = static_cast<Index>(kind_.size());
 }
 
@@ -250,6 +261,17 @@ ParameterSet SceneParameterMap::parameters(const World& world) const {
       else if (d.e.cwiseAbs().maxCoeff(&i) > 0.0) value = world.lcp_block.q(i) * d.e(i);
       theta.add(Parameter{d.name, value});
     }
+  if (f.softness) {
+    auto add_softness = [&](const std::string& suffix, double compliance, double erp) {
+      Parameter c{"compliance" + suffix, compliance, Transform::identity, 0.0};
+      Parameter e{"erp" + suffix, erp, Transform::identity, 0.0, 1.0};
+      theta.add(scaled(c, theta.size())), theta.add(scaled(e, theta.size()));
+    };
+    add_softness("", world.friction.default_compliance, world.friction.default_erp);
+    for (const auto& [a, b] : pairs_)
+      add_softness("[" + std::to_string(a) + "," + std::to_string(b) + "]", world.friction.compliance(a, b),
+                   world.friction.erp(a, b));
+  }
   return theta;
 }
 
@@ -257,9 +279,18 @@ void SceneParameterMap::apply(const ParameterSet& theta, World& world) const {
   if (theta.size() != size_ || world.bodies.size() != body_class_.size())
     throw InputError("scene parameters: θ or the world does not have the scene's layout");
   world.friction.default_mu = theta[0].value;
+  if (settings_.learn.softness) {
+    world.friction.default_compliance = theta[first_softness_].value;
+    world.friction.default_erp = theta[first_softness_ + 1].value;
+  }
   for (FrictionTable::Pair& p : world.friction.pairs) {
     const auto it = std::find(pairs_.begin(), pairs_.end(), ordered(p.material_a, p.material_b));
-    p.mu = it == pairs_.end() ? theta[0].value : theta[1 + (it - pairs_.begin())].value;
+    const Index k = it == pairs_.end() ? 0 : 1 + static_cast<Index>(it - pairs_.begin());
+    p.mu = theta[k].value;
+    if (settings_.learn.softness) {
+      p.compliance = theta[first_softness_ + 2 * k].value;
+      p.erp = theta[first_softness_ + 2 * k + 1].value;
+    }
   }
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     const int c = body_class_[b];
@@ -313,9 +344,16 @@ Vector SceneParameterMap::gradient(const World& world, const std::vector<Contact
   if (g.bodies.size() != world.bodies.size() || g.contact_mu.size() != contacts.size())
     throw InputError("scene parameters: the world gradient does not match the world or its contacts");
   Vector grad = Vector::Zero(size_);
+  if (settings_.learn.softness && (g.contact_compliance.size() != contacts.size() || g.contact_erp.size() != contacts.size()))
+    throw InputError("scene parameters: the world gradient has no compliance/erp entry per contact");
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const int ma = world.bodies[static_cast<std::size_t>(contacts[c].body_a)].material;
-    grad(mu_index(world, ma, material_of_b(world, contacts[c]))) += g.contact_mu[c];
+    const Index k = mu_index(world, ma, material_of_b(world, contacts[c]));
+    grad(k) += g.contact_mu[c];
+    if (settings_.learn.softness) {
+      grad(first_softness_ + 2 * k) += g.contact_compliance[c];
+      grad(first_softness_ + 2 * k + 1) += g.contact_erp[c];
+    }
   }
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     const int c = body_class_[b];
@@ -369,7 +407,9 @@ ParameterSet perturb_scene_parameters(const ParameterSet& truth, const ScenePara
       case SceneParameterMap::Kind::inertia: theta(k) *= 1.0 + sign * fraction; break;
       case SceneParameterMap::Kind::angle:
       case SceneParameterMap::Kind::residual: theta(k) += sign * 0.1 * fraction; break;
-      case SceneParameterMap::Kind::lcp_block: break;  // kept: no scale-free size (entries in 1/kg, kg, m/s)
+      case SceneParameterMap::Kind::lcp_block:  // kept: no scale-free size (entries in 1/kg, kg, m/s)
+      case SceneParameterMap::Kind::compliance:
+      case SceneParameterMap::Kind::erp: break;  // kept: the rigid truth (0) is on the bound
       default: theta(k) += sign * 0.5 * fraction * map.length_scale(k); break;
     }
   }
@@ -388,7 +428,9 @@ double scene_relative_error(const ParameterSet& estimate, const ParameterSet& tr
     case SceneParameterMap::Kind::inertia: return d / std::abs(truth[k].value);
     case SceneParameterMap::Kind::angle:
     case SceneParameterMap::Kind::residual:
-    case SceneParameterMap::Kind::lcp_block: return d;
+    case SceneParameterMap::Kind::lcp_block:
+    case SceneParameterMap::Kind::erp: return d;
+    case SceneParameterMap::Kind::compliance: return d / map.length_scale(k);
     default: return d / map.length_scale(k);
   }
 }

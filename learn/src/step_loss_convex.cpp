@@ -212,6 +212,9 @@ void check_call(const ContactSystem& s, const Vector& target, double dt, const C
   if (s.lcp_block.enabled)
     throw InputError("the convex step loss has no LCP: World::lcp_block (the per-contact LCP correction) is learned "
                      "with the hard loss");
+  if (has_normal_softness(s))
+    throw InputError("the convex step loss does not take normal compliance or erp (FrictionTable): they apply to the "
+                     "lcp model; learn them with the relaxed or the hard loss");
 }
 
 void mark_inaccurate_adjoint(ContactStatus& status, std::string& message, double adjoint) {

@@ -4,6 +4,7 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/learn/step_loss_hard.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -69,6 +70,7 @@ void validate_step_loss_input(const ContactSystem& s, const Vector& target, doub
   for (int r : s.friction_rows)
     if (r < 0 || r >= nc) fail("friction_rows: entry out of range");
   if (s.v_star.size() != nd || !finite(s.v_star)) fail("v_star: must be finite, 3 per body");
+  if (const std::string e = normal_softness_error(s); !e.empty()) fail(e);
   if (target.size() != nd || !finite(target)) fail("target: must be finite, 3 per body");
 }
 
@@ -211,7 +213,13 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   split_rows(dJ, 0, s.Jn, r.grad.Jn);
   split_rows(dJ, nc, s.Jt, r.grad.Jt);
   r.grad.v_star = g + s.Jn.transpose() * dqn + s.Jt.transpose() * dqt;
-  for (Index c = 0; c < nc; ++c) r.grad.phi(c) = s.phi(c) > 0.0 ? dqn(c) / dt : 0.0;
+  // q_n = Jn v* + (max(φ, 0) + e·min(φ, 0))/Δt and M_nn = W_nn + diag(c) (contact_system.hpp).
+  for (Index c = 0; c < nc; ++c) {
+    const double e = s.erp.size() > 0 ? s.erp(c) : 0.0;
+    r.grad.phi(c) = s.phi(c) > 0.0 ? dqn(c) / dt : e * dqn(c) / dt;
+    r.grad.erp(c) = dqn(c) * std::min(s.phi(c), 0.0) / dt;
+    r.grad.compliance(c) = lg.dM.coeff(c, c);
+  }
   return r;
 }
 

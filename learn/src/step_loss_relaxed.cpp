@@ -126,6 +126,8 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
     diag_g(f) += b / t;
     pt.emplace_back(ln + c, gm + f, b);  // a2 μ S γ λ̃n
   }
+  // Normal compliance c (contact_system.hpp): a2 c λn² = a2 c S² λ̃n² in zᵀw.
+  if (s.compliance.size() > 0) diag_n += 2.0 * st.a2 * s.compliance.cwiseProduct(S.cwiseProduct(S));
   for (Index c = 0; c < nc; ++c) pt.emplace_back(ln + c, ln + c, diag_n(c));
   for (Index f = 0; f < nf; ++f) {
     pt.emplace_back(bp + f, bp + f, eps);
@@ -137,7 +139,7 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
   qp.P.makeCompressed();
   qp.q = Vector::Zero(nx);
   qp.q.head(nd) = 2.0 * st.a1 * (s.v_star - target) + st.a2 * m.cwiseProduct(s.v_star);
-  const Vector phip = s.phi.cwiseMax(0.0) / dt;
+  const Vector phip = normal_gap_rate(s, dt);  // (max(φ, 0) + e·min(φ, 0))/Δt
   qp.q.segment(ln, nc) = st.a2 * S.cwiseProduct(phip);
   qp.r = st.a1 * (s.v_star - target).squaredNorm();
   if (center != nullptr) add_center_terms(s, S, st, *center, qp);
@@ -160,6 +162,8 @@ QpProblem relaxed_step_qp(const ContactSystem& s, const Vector& target, double d
       gt.emplace_back(nc + nf + f, j, -it.value());
     }
   }
+  for (Index c = 0; c < s.compliance.size(); ++c)  // w_n's c λn = c S λ̃n
+    if (s.compliance(c) != 0.0) gt.emplace_back(c, ln + c, s.compliance(c) * S(c));
   for (Index f = 0; f < nf; ++f) {
     gt.emplace_back(nc + f, gm + f, 1.0);
     gt.emplace_back(nc + nf + f, gm + f, 1.0);
@@ -304,11 +308,21 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
       it.valueRef() = zt(it.row()) * vp(j) - lam_t(it.row()) * y(j);
   }
   r.grad.v_star = 2.0 * a1 * (vp - target) + a2 * m.cwiseProduct(dv) + s.Jn.transpose() * zn + s.Jt.transpose() * zt;
-  for (Index c = 0; c < nc; ++c) r.grad.phi(c) = s.phi(c) > 0.0 ? (a2 * S(c) * lnt(c) + zn(c)) / dt : 0.0;
+  // The normal rows' gap term (max(φ, 0) + e·min(φ, 0))/Δt and compliance c (header comment).
+  const Vector rate = normal_gap_rate(s, dt);
+  const Vector comp = s.compliance.size() > 0 ? s.compliance : Vector::Zero(nc);
+  for (Index c = 0; c < nc; ++c) {
+    const double e = s.erp.size() > 0 ? s.erp(c) : 0.0, share = a2 * S(c) * lnt(c) + zn(c);
+    r.grad.phi(c) = s.phi(c) > 0.0 ? share / dt : e * share / dt;
+    r.grad.erp(c) = share * std::min(s.phi(c), 0.0) / dt;
+    r.grad.compliance(c) = (a2 * S(c) * lnt(c) + zn(c)) * S(c) * lnt(c);
+  }
   const Vector jny = s.Jn * y, jty = s.Jt * y;
-  Vector dS = a2 * lnt.cwiseProduct(s.phi.cwiseMax(0.0)) / dt - jny.cwiseProduct(lnt);
+  Vector dS = a2 * lnt.cwiseProduct(rate) - jny.cwiseProduct(lnt) +
+              (2.0 * a2 * S.cwiseProduct(lnt) + zn).cwiseProduct(comp).cwiseProduct(lnt);
   // C = ∂ℓ/∂a2 (used by normalize_by_mass's chain through σ, header comment).
-  double C = m.cwiseProduct(dv).dot(vp) + S.cwiseProduct(lnt).dot(s.phi.cwiseMax(0.0)) / dt;
+  double C = m.cwiseProduct(dv).dot(vp) + S.cwiseProduct(lnt).dot(rate) +
+             comp.dot(S.cwiseProduct(lnt).cwiseAbs2());
   for (Index f = 0; f < nf; ++f) {
     const Index c = s.friction_rows[static_cast<std::size_t>(f)];
     const double dl = centered ? lnt(c) - c_used(c) : lnt(c), dg = centered ? gam(f) - c_used(nc + f) : gam(f);

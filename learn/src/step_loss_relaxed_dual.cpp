@@ -64,6 +64,9 @@ StepLossResult RelaxedDualStepLossWorkspace::evaluate(const ContactSystem& s, co
   if (s.lcp_block.enabled)
     throw InputError("the relaxed step loss does not take World::lcp_block (the per-contact LCP correction): learn it "
                      "with the hard loss");
+  if (has_normal_softness(s))
+    throw InputError("the relaxed-dual step loss does not take normal compliance or erp (FrictionTable): learn them "
+                     "with the relaxed (lifted) or the hard loss");
   Impl& m = *impl_;
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const Index n = nc + 3 * nf;

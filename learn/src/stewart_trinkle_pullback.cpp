@@ -3,6 +3,7 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/stewart_trinkle_pullback.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -121,8 +122,16 @@ ContactSystemCotangent stewart_trinkle_pullback(const ContactSystem& s, double d
     for (SparseMatrix::InnerIterator it(J, k); it; ++it)
       ct.minv(k) += it.value() * (0.5 * GsJ.coeff(it.row(), k) + Q.coeff(it.row(), k));
   ct.v_star = dp + s.Jn.transpose() * dq_rows.head(nc) + s.Jt.transpose() * dq_rows.tail(nf);
+  // q_n = Jn v* + (max(φ, 0) + e·min(φ, 0))/Δt and M_nn = W_nn + diag(c) (contact_system.hpp).
   ct.phi = Vector::Zero(nc);
-  for (Index c = 0; c < nc; ++c) ct.phi(c) = s.phi(c) > 0.0 ? dq(c) / dt : 0.0;
+  ct.compliance = Vector::Zero(nc);
+  ct.erp = Vector::Zero(nc);
+  for (Index c = 0; c < nc; ++c) {
+    const double e = s.erp.size() > 0 ? s.erp(c) : 0.0;
+    ct.phi(c) = s.phi(c) > 0.0 ? dq(c) / dt : e * dq(c) / dt;
+    ct.erp(c) = dq(c) * std::min(s.phi(c), 0.0) / dt;
+    ct.compliance(c) = dM.coeff(c, c);
+  }
   return ct;
 }
 

@@ -95,8 +95,12 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
   s.phi.resize(nc);
   std::vector<Triplet> tn, tt;
   std::vector<double> mu;
+  s.compliance.resize(nc);
+  s.erp.resize(nc);
   for (Index i = 0; i < nc; ++i) {
     const Contact& c = contacts[s.contacts[i]];
+    s.compliance(i) = c.compliance;
+    s.erp(i) = c.erp;
     if (block[c.body_a] < 0) throw InputError("contact body_a is not in the island");
     const double offset = contact_gap_offset(world, c);
     s.phi(i) = offset == 0.0 ? c.gap : c.gap + offset;
@@ -120,6 +124,28 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
   s.Jt.setFromTriplets(tt.begin(), tt.end());
   s.mu = Eigen::Map<const Vector>(mu.data(), static_cast<Index>(mu.size()));
   return s;
+}
+
+bool has_normal_softness(const ContactSystem& s) {
+  return (s.compliance.size() > 0 && (s.compliance.array() != 0.0).any()) ||
+         (s.erp.size() > 0 && (s.erp.array() != 0.0).any());
+}
+
+Vector normal_gap_rate(const ContactSystem& s, double dt) {
+  Vector rate = s.phi.cwiseMax(0.0);
+  if (s.erp.size() > 0) rate += s.erp.cwiseProduct(s.phi.cwiseMin(0.0));
+  return rate / dt;
+}
+
+std::string normal_softness_error(const ContactSystem& s) {
+  const Index nc = s.num_contacts();
+  if (s.compliance.size() != 0 && s.compliance.size() != nc) return "compliance: one entry per contact or none";
+  if (s.erp.size() != 0 && s.erp.size() != nc) return "erp: one entry per contact or none";
+  for (Index i = 0; i < s.compliance.size(); ++i)
+    if (!(std::isfinite(s.compliance(i)) && s.compliance(i) >= 0.0)) return "compliance: must be finite and >= 0";
+  for (Index i = 0; i < s.erp.size(); ++i)
+    if (!(s.erp(i) >= 0.0 && s.erp(i) <= 1.0)) return "erp: must be in [0, 1]";
+  return {};
 }
 
 SparseMatrix delassus(const ContactSystem& s) {

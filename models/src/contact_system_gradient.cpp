@@ -56,13 +56,16 @@ void check_sizes(const char* caller, const World& world, const std::vector<Conta
     if (ct->Jt.rows() != nf || ct->Jt.cols() != nd) fail("ct.Jt: must have the shape of s.Jt");
     if (ct->phi.size() != nc) fail("ct.phi: one entry per contact of the island expected");
     if (ct->mu.size() != nf) fail("ct.mu: one entry per friction row expected");
+    if (ct->compliance.size() != nc || ct->erp.size() != nc)
+      fail("ct.compliance, ct.erp: one entry per contact of the island expected");
     if (ct->minv.size() != nd) fail("ct.minv: one entry per dof expected");
     if (ct->v_star.size() != nd) fail("ct.v_star: one entry per dof expected");
   }
   if (!applied.empty() && applied.size() != world.bodies.size()) fail("applied: one (fx, fy, torque) per body or empty");
   if (g.bodies.size() != world.bodies.size() || g.half_plane_normal.size() != world.half_planes.size() ||
       g.half_plane_offset.size() != world.half_planes.size() || g.segment_ends.size() != world.segments.size() ||
-      g.contact_mu.size() != contacts.size())
+      g.contact_mu.size() != contacts.size() || g.contact_compliance.size() != contacts.size() ||
+      g.contact_erp.size() != contacts.size())
     fail(g_name + ": shapes differ from the world's or the contact list's (WorldGradient::set_zero)");
   for (std::size_t b = 0; b < world.bodies.size(); ++b)
     if (g.bodies[b].vertices.size() != world.bodies[b].shape.vertices.size())
@@ -186,6 +189,8 @@ void ContactSystemCotangent::set_zero(const ContactSystem& s) {
   Jt.coeffs().setZero();
   phi = Vector::Zero(s.num_contacts());
   mu = Vector::Zero(s.num_friction());
+  compliance = Vector::Zero(s.num_contacts());
+  erp = Vector::Zero(s.num_contacts());
   minv = Vector::Zero(s.num_dofs());
   v_star = Vector::Zero(s.num_dofs());
   lcp_block_M.setZero();
@@ -200,6 +205,8 @@ void WorldGradient::set_zero(const World& world, std::size_t num_contacts) {
   half_plane_offset.assign(world.half_planes.size(), 0.0);
   segment_ends.assign(world.segments.size(), {Vec2::Zero(), Vec2::Zero()});
   contact_mu.assign(num_contacts, 0.0);
+  contact_compliance.assign(num_contacts, 0.0);
+  contact_erp.assign(num_contacts, 0.0);
   lcp_block_M.setZero();
   lcp_block_q.setZero();
 }
@@ -239,6 +246,8 @@ void accumulate_world_gradient(const World& world, const std::vector<Contact>& c
     const Contact& c = contacts[s.contacts[i]];
     if (block[c.body_a] < 0 || (world.is_dynamic(c.body_b) && block[c.body_b] < 0))
       throw InputError("accumulate_world_gradient: s.contacts[" + std::to_string(i) + "]: a body is not in the island");
+    g.contact_compliance[static_cast<std::size_t>(s.contacts[i])] += ct.compliance(i);
+    g.contact_erp[static_cast<std::size_t>(s.contacts[i])] += ct.erp(i);
     g.bodies[c.body_a].gap_offset += ct.phi(i);
     if (c.body_b >= 0) g.bodies[c.body_b].gap_offset += ct.phi(i);
     pull_back_contact(world, contacts[s.contacts[i]], i, friction_row[static_cast<std::size_t>(i)], block, ct, g);
@@ -268,6 +277,12 @@ ContactSystem contact_system_tangent(const World& world, const std::vector<Conta
     out.v_star.segment<3>(j) += db.velocity_residual * velocity_residual_features(b);
   }
   for (Index f = 0; f < s.num_friction(); ++f) out.mu(f) = direction.contact_mu[s.contacts[s.friction_rows[f]]];
+  out.compliance.resize(s.num_contacts());
+  out.erp.resize(s.num_contacts());
+  for (Index i = 0; i < s.num_contacts(); ++i) {
+    out.compliance(i) = direction.contact_compliance[static_cast<std::size_t>(s.contacts[i])];
+    out.erp(i) = direction.contact_erp[static_cast<std::size_t>(s.contacts[i])];
+  }
   std::vector<Index> friction_row(static_cast<std::size_t>(s.num_contacts()), -1);
   for (Index f = 0; f < s.num_friction(); ++f) friction_row[static_cast<std::size_t>(s.friction_rows[f])] = f;
   for (Index i = 0; i < s.num_contacts(); ++i) {

@@ -60,6 +60,9 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   if (s.lcp_block.enabled)
     throw InputError("the convex model has no LCP: World::lcp_block (the per-contact LCP correction) applies to the lcp "
                      "model only");
+  if (has_normal_softness(s))
+    throw InputError("the convex model does not take normal compliance or erp (FrictionTable): they apply to the lcp "
+                     "model only; its normal softening is NormalSofteningSettings");
   const Index nc = s.num_contacts(), nf = s.num_friction();
   ContactSolution out;
 

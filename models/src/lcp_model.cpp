@@ -1,4 +1,5 @@
 // The Stewart–Trinkle LCP contact model (contact_step.hpp).
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_step.hpp>
 
@@ -10,6 +11,7 @@
 namespace lcprelax {
 
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt) {
+  if (const std::string e = normal_softness_error(s); !e.empty()) throw InputError("stewart_trinkle_lcp: " + e);
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const Index bp = nc, bm = nc + nf, g = nc + 2 * nf;  // offsets of β⁺, β⁻, γ
   std::vector<Triplet> t;
@@ -28,6 +30,8 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
       expand(it.row(), [&](Index R, double sr) {
         expand(c, [&](Index C, double sc) { t.emplace_back(R, C, sr * sc * it.value()); });
       });
+  for (Index c = 0; c < s.compliance.size(); ++c)  // the pairs' normal compliance (world.hpp FrictionTable)
+    if (s.compliance(c) != 0.0) t.emplace_back(c, c, s.compliance(c));
   for (Index f = 0; f < nf; ++f) {
     t.emplace_back(bp + f, g + f, 1.0);
     t.emplace_back(bm + f, g + f, 1.0);
@@ -51,7 +55,11 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
   lcp.M.setFromTriplets(t.begin(), t.end());
   lcp.M.makeCompressed();
   lcp.q = Vector::Zero(nc + 3 * nf);
+  // Same expression as without softness (Eigen evaluates it as φ⁺/Δt, then += Jn v*): a rigid
+  // system keeps its q bit for bit; the erp term (normal_gap_rate) is added only where set.
   lcp.q.head(nc) = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
+  if (s.erp.size() > 0 && (s.erp.array() != 0.0).any())
+    lcp.q.head(nc) += s.erp.cwiseProduct(s.phi.cwiseMin(0.0)) / dt;
   const Vector jt = s.Jt * s.v_star;
   lcp.q.segment(bp, nf) = jt;
   lcp.q.segment(bm, nf) = -jt;

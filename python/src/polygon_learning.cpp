@@ -49,8 +49,8 @@ class PyPolygonObjective : public PyObjective {
     ls.relaxed_warm_center = relaxed_warm_center;
     apply_loss_qp_settings(ls, qp);
     const learn::PolygonLearnFlags flags = parse_learn_kinds(learn);
-    if (flags.gap || flags.residual || flags.block || flags.block_tied)
-      throw InputError("learn: gap, residual and the lcp block are learned by SceneObjective only");
+    if (flags.gap || flags.residual || flags.block || flags.block_tied || flags.softness)
+      throw InputError("learn: gap, residual, the lcp block and softness are learned by SceneObjective only");
     learn::PolygonDataSettings ds;
     ds.seed = static_cast<std::uint64_t>(seed);
     ds.noise = noise;

@@ -7,10 +7,12 @@
 // Parameters (scene_params.hpp; names and units): "mu" (friction), per shape class c
 // "class<c>.mass" (kg), "class<c>.inertia" (kg·m²), "class<c>.vertex<i>.x|y" (m, body
 // frame), per half-plane h "half_plane<h>.angle" (rad), "half_plane<h>.offset" (m), per
-// segment "segment<s>.a.x" ... (m), and with learn 'gap' / 'residual' / 'block' / 'block_tied' the nonphysical terms.
+// segment "segment<s>.a.x" ... (m), and with learn 'gap' / 'residual' / 'block' / 'block_tied' /
+// 'softness' the nonphysical terms.
 // `learn` chooses the kinds (a comma-separated str or a list of "mu", "mass", "inertia",
-// "vertices", "ground", "gap", "residual", "block", "block_tied"; the last two: the lcp
-// model's per-contact LCP correction, method 'hard' only); θ holds only the learned ones (parameter_names),
+// "vertices", "ground", "gap", "residual", "block", "block_tied", "softness"; block and
+// block_tied: the lcp model's per-contact LCP correction, method 'hard' only; softness: the
+// friction table's normal "compliance" (1/kg) and "erp", methods 'hard' and 'relaxed'); θ holds only the learned ones (parameter_names),
 // the others stay at the scene's values. true_values: θ of the scene itself (the data's
 // truth); perturbed_values(fraction, seed): a deterministic perturbation of it (the CLI's
 // --perturb). Conventions of evaluate(): objective.hpp.

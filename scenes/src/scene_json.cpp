@@ -36,6 +36,12 @@ double nonnegative(const Json& j, const std::string& path) {
   return v;
 }
 
+double unit_interval(const Json& j, const std::string& path) {
+  const double v = scene_json::number(j, path);
+  if (!(v >= 0.0 && v <= 1.0)) fail(path, "must be in [0, 1]");
+  return v;
+}
+
 double positive(const Json& j, const std::string& path) {
   const double v = scene_json::number(j, path);
   if (!(v > 0.0)) fail(path, "must be > 0");
@@ -48,9 +54,11 @@ int material(const Json& obj, const std::string& path) {
 }
 
 FrictionTable read_friction(const Json& j, const std::string& path) {
-  scene_json::expect_object(j, path, {"default", "pairs"});
+  scene_json::expect_object(j, path, {"default", "compliance", "erp", "pairs"});
   FrictionTable table;
   if (const Json* d = find(j, "default")) table.default_mu = nonnegative(*d, member(path, "default"));
+  if (const Json* d = find(j, "compliance")) table.default_compliance = nonnegative(*d, member(path, "compliance"));
+  if (const Json* d = find(j, "erp")) table.default_erp = unit_interval(*d, member(path, "erp"));
   const Json* pairs = find(j, "pairs");
   if (pairs == nullptr) return table;
   const std::string ppath = member(path, "pairs");
@@ -58,7 +66,7 @@ FrictionTable read_friction(const Json& j, const std::string& path) {
   for (std::size_t i = 0; i < pairs->size(); ++i) {
     const std::string ip = element(ppath, i);
     const Json& p = (*pairs)[i];
-    scene_json::expect_object(p, ip, {"materials", "mu"});
+    scene_json::expect_object(p, ip, {"materials", "mu", "compliance", "erp"});
     const std::string mp = member(ip, "materials");
     const Json& m = scene_json::require(p, ip, "materials");
     if (!m.is_array() || m.size() != 2) fail(mp, "expected two material indices [a, b]");
@@ -66,6 +74,10 @@ FrictionTable read_friction(const Json& j, const std::string& path) {
     pair.material_a = static_cast<int>(scene_json::integer(m[0], element(mp, 0), 0, kMaxInt));
     pair.material_b = static_cast<int>(scene_json::integer(m[1], element(mp, 1), 0, kMaxInt));
     pair.mu = nonnegative(scene_json::require(p, ip, "mu"), member(ip, "mu"));
+    const Json* c = find(p, "compliance");
+    pair.compliance = c ? nonnegative(*c, member(ip, "compliance")) : table.default_compliance;
+    const Json* e = find(p, "erp");
+    pair.erp = e ? unit_interval(*e, member(ip, "erp")) : table.default_erp;
     for (const FrictionTable::Pair& q : table.pairs)
       if ((q.material_a == pair.material_a && q.material_b == pair.material_b) ||
           (q.material_a == pair.material_b && q.material_b == pair.material_a))
@@ -263,10 +275,19 @@ std::string write_scene(const Scene& scene) {
   Json pairs = Json::array();
   for (std::size_t i = 0; i < w.friction.pairs.size(); ++i) {
     const FrictionTable::Pair& p = w.friction.pairs[i];
-    pairs.push_back({{"materials", {p.material_a, p.material_b}},
-                     {"mu", finite(p.mu, member(element("friction.pairs", i), "mu"))}});
+    Json pair = {{"materials", {p.material_a, p.material_b}},
+                 {"mu", finite(p.mu, member(element("friction.pairs", i), "mu"))}};
+    if (w.friction.has_softness()) {
+      pair["compliance"] = finite(p.compliance, member(element("friction.pairs", i), "compliance"));
+      pair["erp"] = finite(p.erp, member(element("friction.pairs", i), "erp"));
+    }
+    pairs.push_back(pair);
   }
   root["friction"] = {{"default", finite(w.friction.default_mu, "friction.default")}, {"pairs", pairs}};
+  if (w.friction.has_softness()) {
+    root["friction"]["compliance"] = finite(w.friction.default_compliance, "friction.compliance");
+    root["friction"]["erp"] = finite(w.friction.default_erp, "friction.erp");
+  }
   Json bodies = Json::array();
   for (std::size_t i = 0; i < w.bodies.size(); ++i) {
     const RigidBody& b = w.bodies[i];

@@ -62,6 +62,10 @@ struct PolygonDataSettings {
   double noise = 0.0;           ///< σ of the Gaussian noise, ≥ 0
   bool contact_only = true;
   ContactModel model = ContactModel::lcp;
+  /// The truth's normal softness (world.hpp FrictionTable: compliance c in 1/kg ≥ 0, erp e in
+  /// [0, 1]; nonzero needs model lcp). PolygonModel has no such parameter: a rigid model
+  /// learned from soft data is misspecified on purpose (the structure experiments).
+  double compliance = 0.0, erp = 0.0;
   std::uint64_t seed = 1;
   std::string validation_error() const;  ///< empty if valid, else names the field
 };

@@ -56,12 +56,12 @@ HalfPlane ground_half_plane(double height, double angle);
 /// Which parameter kinds are learned: the same kinds as a scene's (scene_params.hpp).
 using PolygonLearnFlags = SceneLearnFlags;
 
-/// parse_scene_learn_flags (scene_params.hpp), without "gap", "residual", "block" and
-/// "block_tied" (scene learning only): InputError("--learn: ...") for them.
+/// parse_scene_learn_flags (scene_params.hpp), without "gap", "residual", "block",
+/// "block_tied" and "softness" (scene learning only): InputError("--learn: ...") for them.
 inline PolygonLearnFlags parse_polygon_learn_flags(const std::string& list) {
   const PolygonLearnFlags f = parse_scene_learn_flags(list);
-  if (f.gap || f.residual || f.block || f.block_tied)
-    throw InputError("--learn: gap, residual, block and block_tied are learned by `learn scene` only");
+  if (f.gap || f.residual || f.block || f.block_tied || f.softness)
+    throw InputError("--learn: gap, residual, block, block_tied and softness are learned by `learn scene` only");
   return f;
 }
 

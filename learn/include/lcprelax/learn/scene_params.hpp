@@ -34,6 +34,11 @@
 //                        (d = (qn, qt, −qt, 0)): the friction rows' antisymmetry imposed.
 //   apply() enables the world's correction when either flag is set; parameters() reads each
 //   entry's value from the world (the first entry a tied parameter sets).
+//   Last, flag softness (lcp model: the hard and relaxed losses; the convex and relaxed-dual
+//   losses refuse it): the normal softness of the friction table (world.hpp FrictionTable),
+//   "compliance" (identity, ≥ 0, 1/kg, scale the classes' mean 1/m) and "erp" (identity, in
+//   [0, 1]) for the table's default, then per material pair with its own μ (mu_per_pair)
+//   "compliance[a,b]", "erp[a,b]"; the rigid model is 0 for both.
 // Flags choose which kinds are learned (Parameter::learn); held parameters keep their
 // values. Static bodies have no class (they are static geometry held at their values).
 //
@@ -56,16 +61,17 @@ struct SceneLearnFlags {
   bool mu = true, mass = true, inertia = true, vertices = true, ground = false;
   bool gap = false, residual = false;  ///< class<c>.gap, class<c>.residual<r><j>
   bool block = false, block_tied = false;  ///< World::lcp_block, free or tied (at most one of the two)
+  bool softness = false;  ///< the friction table's normal compliance and erp (per pair with mu_per_pair)
 };
 
 /// Parses a comma-separated list of "mu", "mass", "inertia", "vertices", "ground", "gap",
-/// "residual", "block", "block_tied" (each at most once, at least one, not both block
+/// "residual", "block", "block_tied", "softness" (each at most once, at least one, not both block
 /// forms); throws InputError("--learn: ...") naming an unknown entry.
 SceneLearnFlags parse_scene_learn_flags(const std::string& list);
 
 struct SceneParameterSettings {
   SceneLearnFlags learn;
-  bool mu_per_pair = false;  ///< one μ per listed material pair, else one global μ
+  bool mu_per_pair = false;  ///< one μ (and softness) per listed material pair, else one global value
 };
 
 /// Shape class of every body: dynamic bodies with identical vertices, mass, inertia, gap_offset
@@ -92,10 +98,12 @@ class SceneParameterMap {
   Index size() const { return size_; }
   /// Whether θ holds World::lcp_block's entries (flag block or block_tied).
   bool learns_lcp_block() const { return settings_.learn.block || settings_.learn.block_tied; }
+  /// Whether θ holds the friction table's normal compliance and erp (flag softness).
+  bool learns_softness() const { return settings_.learn.softness; }
   const std::vector<int>& body_class() const { return body_class_; }
   int num_classes() const { return static_cast<int>(class_vertices_.size()); }
 
-  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end, gap, residual, lcp_block };
+  enum class Kind { mu, mass, inertia, vertex, angle, offset, segment_end, gap, residual, lcp_block, compliance, erp };
   Kind kind(Index k) const { return kind_[static_cast<std::size_t>(k)]; }
   /// Length scale of parameter k (m), also its Parameter::scale (ξ = θ/scale): its class's radius for vertices and
   /// gaps, the mean class radius for offsets and segment ends, 1 otherwise (residual entries included).
@@ -113,6 +121,7 @@ class SceneParameterMap {
   Index first_half_plane_ = 0, first_segment_ = 0;
   Index first_gap_ = 0, first_residual_ = 0;  ///< end of the segments; end of the gaps
   Index first_block_ = 0;                     ///< end of the residual entries
+  Index first_softness_ = 0;                  ///< end of the lcp_block entries
   Index size_ = 0;
   std::vector<Kind> kind_;
   std::vector<double> scale_;
@@ -122,7 +131,7 @@ class SceneParameterMap {
 /// scaled by (1 ± fraction), vertex coordinates moved by ±fraction·0.5·(class radius),
 /// half-plane offsets and segment ends by ±fraction·0.5·(mean class radius), angles by
 /// ±0.1·fraction rad, gaps by ±fraction·0.5·(class radius), residual entries by ±0.1·fraction
-/// (in their own units); lcp_block entries are kept (their units differ entry by entry and a
+/// (in their own units); lcp_block, compliance and erp entries are kept (their units differ entry by entry and a
 /// fixed size can make the LCP unsolvable); random signs from std::mt19937_64(seed) in layout
 /// order (a sign is drawn for every parameter); only learned parameters move.
 ParameterSet perturb_scene_parameters(const ParameterSet& truth, const SceneParameterMap& map, double fraction,
@@ -130,7 +139,7 @@ ParameterSet perturb_scene_parameters(const ParameterSet& truth, const ScenePara
 
 /// Relative error of parameter k: |Δ|/|truth| for log parameters, |Δ|/(class radius) for
 /// vertex coordinates and gaps, |Δ|/(mean class radius) for offsets and segment ends, |Δ| (rad) for
-/// angles, |Δ| (the entry's units) for residual entries.
+/// angles, |Δ| (the entry's units) for residual, lcp_block and erp entries, |Δ|/scale for compliance.
 double scene_relative_error(const ParameterSet& estimate, const ParameterSet& truth, const SceneParameterMap& map,
                             Index k);
 

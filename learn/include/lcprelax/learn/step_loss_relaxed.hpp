@@ -7,6 +7,10 @@
 // The LCP is the island's Stewart–Trinkle LCP (models/contact_step.hpp) in
 // z = [λn (nc), β⁺, β⁻, γ (nf each)], with v⁺ = v* + Δv and M Δv = Jnᵀλn + Jtᵀ(β⁺ − β⁻):
 //     w = ( Jn v⁺ + φ⁺/Δt,  Jt v⁺ + γ,  −Jt v⁺ + γ,  μ∘λn(f) − β⁺ − β⁻ ),   φ⁺ = max(φ, 0),
+// (with a pair's normal softness, contact_system.hpp: φ⁺ → max(φ, 0) + e∘min(φ, 0) and
+// w_n += c∘λn, which adds a2 cᵀλn² to zᵀw, 2 a2 c S² to λ̃n's Hessian diagonal and c S to
+// the normal row of G; ∂ℓ/∂c = (a2 S λ̃n + z_n) S λ̃n, ∂ℓ/∂e = (a2 S λ̃n + z_n) min(φ, 0)/Δt,
+// ∂ℓ/∂φ = e (a2 S λ̃n + z_n)/Δt where φ < 0; ∂ℓ/∂S gains (2 a2 S λ̃n + z_n) c λ̃n),
 // where λn(f) is the normal impulse of friction row f's contact. Its complementarity term,
 // with λt = β⁺ − β⁻ (the β±γ products cancel) and Jnᵀλn + Jtᵀλt = M Δv, is
 //     zᵀw = (Jnᵀλn + Jtᵀλt)ᵀv⁺ + λnᵀφ⁺/Δt + Σ_f μ_f γ_f λn(f)

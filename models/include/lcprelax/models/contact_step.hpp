@@ -5,7 +5,10 @@
 // Both models use the gap term max(φ, 0)/Δt: a contact inside the margin may close its
 // gap during the step but never gets a push-out velocity from a penetration (that would
 // add kinetic energy); penetration is removed at position level by the simulator's
-// post-stabilization (simulator.hpp).
+// post-stabilization (simulator.hpp). Exception: a material pair with normal softness
+// (compliance c, erp e; world.hpp FrictionTable) gives the lcp model's normal row
+// Jn v⁺ + (max(φ,0) + e·min(φ,0))/Δt + c·λn (an implicit spring–damper); the convex model
+// refuses such a system (InputError).
 //
 // lcp (Stewart & Trinkle 1996; Anitescu & Potra 1997), unknowns z = [λn, β⁺, β⁻, γ]
 // (β± per friction row, λt = β⁺ − β⁻, γ the sliding speed):
@@ -132,8 +135,9 @@ struct StewartTrinkleLcp {
   Vector q;
 };
 
-/// The LCP of the lcp model for an island (W = delassus(s)), with s.lcp_block added to every
-/// contact's own block when enabled (world.hpp ContactLcpBlock).
+/// The LCP of the lcp model for an island (W = delassus(s)), with the contacts' compliance on
+/// the normal diagonal and their erp in q's gap term (normal_gap_rate), and s.lcp_block added
+/// to every contact's own block when enabled (world.hpp ContactLcpBlock).
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt);
 
 /// Each contact's indices in the LCP's z = [λn (nc), β⁺, β⁻, γ (nf each)]: 4 per contact in the
@@ -159,7 +163,8 @@ constexpr Index kLiftedMinContacts = 24;
 /// 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
 /// the result has status failed and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
 /// `softening` chooses phase 2's normal softening (validated: InputError when invalid).
-/// The convex model has no LCP: InputError when s.lcp_block is enabled (world.hpp).
+/// The convex model has no LCP: InputError when s.lcp_block is enabled (world.hpp) or when a
+/// contact has normal compliance or erp (has_normal_softness).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
                                    double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic,
                                    const NormalSofteningSettings& softening = {});

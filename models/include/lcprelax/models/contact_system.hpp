@@ -18,10 +18,14 @@
 // gap of contact c is φ = c.gap + gap_offset_a (+ gap_offset_b when b is a body), and v* of
 // a body gets + W (vx, vy, ω, 1). Both are skipped where they are exactly 0, so a world
 // without them assembles bit for bit as before. World::lcp_block is copied as it is (the
-// lcp model's stewart_trinkle_lcp applies it).
+// lcp model's stewart_trinkle_lcp applies it). Each contact's normal softness (compliance c,
+// erp e: FrictionTable, world.hpp) is copied per contact; stewart_trinkle_lcp and the hard
+// and relaxed learning losses read the normal row as (Jn v⁺)ᵢ + normal_gap_rate(s, Δt)ᵢ +
+// cᵢ λnᵢ. A hand-made system may leave both vectors empty (= all zero).
 #include <lcprelax/world/world.hpp>
 #include <lcprelax/sparse/types.hpp>
 
+#include <string>
 #include <vector>
 
 namespace lcprelax {
@@ -47,6 +51,8 @@ struct ContactSystem {
   SparseMatrix Jt;            ///< friction rows × 3·bodies
   Vector phi;                 ///< gap per contact (m)
   Vector mu;                  ///< μ per friction row
+  Vector compliance;          ///< normal compliance c per contact (1/kg), or empty (all 0)
+  Vector erp;                 ///< erp e per contact (in [0, 1]), or empty (all 0)
   Vector v_star;              ///< free velocity v + Δt M⁻¹ f (3·bodies)
   ContactLcpBlock lcp_block;  ///< the world's per-contact LCP correction (world.hpp; lcp model only)
 
@@ -69,6 +75,15 @@ bool has_velocity_residual(const RigidBody& body);
 Vec3 velocity_residual_term(const RigidBody& body);
 /// The offset contact c's gap gets (m): body a's gap_offset, plus body b's when body_b ≥ 0.
 double contact_gap_offset(const World& world, const Contact& c);
+
+/// Whether any contact of s has a nonzero compliance or erp (FrictionTable, world.hpp).
+bool has_normal_softness(const ContactSystem& s);
+/// The normal rows' gap term (m/s): (max(φᵢ, 0) + eᵢ·min(φᵢ, 0))/Δt per contact (eᵢ = 0 when
+/// s.erp is empty).
+Vector normal_gap_rate(const ContactSystem& s, double dt);
+/// Empty when s.compliance and s.erp are empty or one finite entry per contact with c ≥ 0
+/// and e in [0, 1]; else a message naming the field.
+std::string normal_softness_error(const ContactSystem& s);
 
 /// W = J M⁻¹ Jᵀ for J = [Jn; Jt] (rows: contacts, then friction rows).
 SparseMatrix delassus(const ContactSystem& s);

@@ -6,7 +6,7 @@
 // ∂ℓ/∂(Jn, Jt, φ, μ, M⁻¹, v*) as a ContactSystemCotangent; accumulate_world_gradient()
 // pulls them back to ∂ℓ/∂(world primitives): every body's body-frame vertices, mass and
 // inertia, every half-plane's normal and offset, every segment's end points, and every
-// contact's μ. Each contact row depends only on the two shapes that touch, so the pullback
+// contact's μ, normal compliance and erp. Each contact row depends only on the two shapes that touch, so the pullback
 // costs O(contacts + bodies) and never forms a dense Jacobian with one column per parameter.
 //
 // Conventions (contact_system.hpp, world.hpp): Jn, Jt rows (1, 1, m) per body block; φ (m);
@@ -51,6 +51,8 @@ struct ContactSystemCotangent {
   SparseMatrix Jt;  ///< ∂ℓ/∂Jt, Jt's shape; only entries on Jt's sparsity pattern are used
   Vector phi;       ///< ∂ℓ/∂φ per contact (1/m · unit of ℓ)
   Vector mu;        ///< ∂ℓ/∂μ per friction row
+  Vector compliance;  ///< ∂ℓ/∂c per contact (normal compliance, kg · unit of ℓ)
+  Vector erp;         ///< ∂ℓ/∂e per contact (normal erp)
   Vector minv;      ///< ∂ℓ/∂M⁻¹ per dof
   Vector v_star;    ///< ∂ℓ/∂v* per dof
   /// ∂ℓ/∂(ContactLcpBlock M, q) (world.hpp), zero unless the loss uses the lcp model's LCP
@@ -75,6 +77,8 @@ struct WorldGradient {
   std::vector<double> half_plane_offset;  ///< per half-plane
   std::vector<std::array<Vec2, 2>> segment_ends;  ///< per segment: ∂ℓ/∂a, ∂ℓ/∂b
   std::vector<double> contact_mu;         ///< per world contact (index into the contact list)
+  std::vector<double> contact_compliance;  ///< ∂ℓ/∂c per world contact (FrictionTable's normal compliance)
+  std::vector<double> contact_erp;         ///< ∂ℓ/∂e per world contact
   /// ∂ℓ/∂World::lcp_block (M, q), summed over islands
   Mat44 lcp_block_M = Mat44::Zero();
   Vec4 lcp_block_q = Vec4::Zero();
@@ -96,7 +100,8 @@ void accumulate_world_gradient(const World& world, const std::vector<Contact>& c
 /// Forward mode (for tests, and for tangents along a few parameter directions): the
 /// directional derivative of s's data along `direction`, a WorldGradient read as a tangent
 /// of the primitives (same shapes, same meaning per entry). Returned as a ContactSystem with
-/// s's index fields whose Jn, Jt (on s's patterns), φ, μ, M⁻¹ and v* hold d(data)/dε.
+/// s's index fields whose Jn, Jt (on s's patterns), φ, μ, compliance, erp, M⁻¹ and v* hold
+/// d(data)/dε.
 /// ⟨ct, contact_system_tangent(…, dir)⟩ = ⟨accumulate_world_gradient(…, ct), dir⟩.
 /// Throws InputError as accumulate_world_gradient does.
 ContactSystem contact_system_tangent(const World& world, const std::vector<Contact>& contacts, const ContactSystem& s,

@@ -68,21 +68,59 @@ struct Segment {
   int material = 0;
 };
 
-/// Friction coefficients: μ for a pair of materials, `default_mu` where no pair is given.
+/// The contact material table: per pair of materials the friction coefficient μ and the
+/// normal row's softness (compliance c, erp e); the defaults where no pair is listed.
+///
+/// Softness (lcp model only; models/contact_step.hpp, stewart_trinkle_lcp): contact i's
+/// normal row of the Stewart–Trinkle LCP becomes
+///     w_n,i = (Jn v⁺)_i + (max(φ_i, 0) + e·min(φ_i, 0))/Δt + c·λn_i ≥ 0  ⊥  λn_i ≥ 0,
+/// c in 1/kg (velocity per normal impulse, m/s per N·s), e dimensionless in [0, 1]. Where
+/// the contact is active (w_n = 0) this is the implicit spring–damper of stiffness k (N/m)
+/// and damping d (N·s/m) in constraint-force-mixing form (Smith, Open Dynamics Engine
+/// manual, CFM/ERP; Catto, "Soft Constraints", GDC 2011): c = 1/(Δt(Δt·k + d)) and
+/// e = Δt·k/(Δt·k + d), i.e. k = e/(c·Δt²), d = (1 − e)/(c·Δt). e is the fraction of an
+/// overlap that the step's velocity removes (the position projection removes the rest);
+/// a positive gap keeps the rigid term φ/Δt. The rigid model is c = 0, e = 0 (defaults).
+/// The convex model's normal softening is models/normal_softening.hpp: the convex Simulator
+/// and the convex and relaxed-dual losses refuse a nonzero c or e (InputError).
 struct FrictionTable {
   double default_mu = 0.5;
+  double default_compliance = 0.0;  ///< c (1/kg), ≥ 0
+  double default_erp = 0.0;         ///< e, in [0, 1]
   struct Pair {
     int material_a = 0, material_b = 0;
     double mu = 0.5;
+    double compliance = 0.0;  ///< c (1/kg), ≥ 0
+    double erp = 0.0;         ///< e, in [0, 1]
   };
   std::vector<Pair> pairs;  ///< symmetric: (a, b) also applies to (b, a)
 
-  double mu(int material_a, int material_b) const {
+  /// The listed pair (a, b) or (b, a), else nullptr.
+  const Pair* find(int material_a, int material_b) const {
     for (const Pair& p : pairs)
       if ((p.material_a == material_a && p.material_b == material_b) ||
           (p.material_a == material_b && p.material_b == material_a))
-        return p.mu;
-    return default_mu;
+        return &p;
+    return nullptr;
+  }
+  double mu(int material_a, int material_b) const {
+    const Pair* p = find(material_a, material_b);
+    return p ? p->mu : default_mu;
+  }
+  double compliance(int material_a, int material_b) const {
+    const Pair* p = find(material_a, material_b);
+    return p ? p->compliance : default_compliance;
+  }
+  double erp(int material_a, int material_b) const {
+    const Pair* p = find(material_a, material_b);
+    return p ? p->erp : default_erp;
+  }
+  /// Whether any entry (default or pair) has a nonzero compliance or erp.
+  bool has_softness() const {
+    if (default_compliance != 0.0 || default_erp != 0.0) return true;
+    for (const Pair& p : pairs)
+      if (p.compliance != 0.0 || p.erp != 0.0) return true;
+    return false;
   }
 };
 
@@ -159,6 +197,8 @@ struct Contact {
   Vec2 normal{0.0, 1.0};  ///< unit, from b to a
   double gap = 0.0;       ///< φ (m), negative when overlapping
   double mu = 0.0;        ///< friction coefficient of the pair
+  double compliance = 0.0;  ///< the pair's normal compliance c (1/kg; FrictionTable)
+  double erp = 0.0;         ///< the pair's erp e (FrictionTable)
   Feature feature;        ///< what produced the point (filled by find_contacts)
 };
 
