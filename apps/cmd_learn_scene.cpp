@@ -24,7 +24,7 @@
 // --learn block / block_tied: the lcp model's per-contact LCP correction (World::lcp_block),
 // entry by entry or with the friction rows' antisymmetry imposed; --method hard only.
 // --learn softness: the friction table's normal compliance (1/kg) and erp (world.hpp
-// FrictionTable; lcp model), --method hard or relaxed.
+// FrictionTable), any --method.
 // --softening (convex only): the normal softening of the convex loss and of the generated
 // data (models/normal_softening.hpp); default the scene's ("softening" in the scene JSON,
 // exp_phi for the learning pile). With --data the data are the file's, whatever it says.
@@ -150,8 +150,6 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   ps.learn = learn::parse_scene_learn_flags(o.learn);
   require_option(!(ps.learn.block || ps.learn.block_tied) || ls.method == learn::LossMethod::hard, "--learn",
                  "block and block_tied (the exact model's LCP) are learned with --method hard only");
-  require_option(!ps.learn.softness || ls.method != learn::LossMethod::convex, "--learn",
-                 "softness (the exact model's normal compliance and erp) is learned with --method hard or relaxed");
   require_option(o.scene.empty() || o.bodies == LearnSceneOptions{}.bodies, "--bodies", "cannot be combined with --scene");
   require_option(o.data_model.empty() || o.scene.empty(), "--data-model",
                  "cannot be combined with --scene (the scene file names its contact model)");
@@ -357,8 +355,8 @@ Command add_learn_scene_command(CLI::App& learn) {
                   "shapes), gap (a contact distance offset per shape), residual (a linear velocity correction "
                   "per shape), block (a 4x4 correction of every contact's block of the exact model's LCP and of its "
                   "constant, all 20 entries free) or block_tied (the same with the friction rows' antisymmetry imposed, "
-                  "7 entries), softness (the exact model's normal compliance and erp of the friction table's "
-                  "default); block and block_tied need --method hard, softness hard or relaxed")->capture_default_str();
+                  "7 entries), softness (the normal compliance and erp of the friction table's default); "
+                  "block and block_tied need --method hard")->capture_default_str();
   app->add_option("--epochs", o->epochs, "most training epochs (passes over the data); 0: only evaluate")->capture_default_str();
   add_learn_stop_options(*app, o->stop);
   app->add_option("--batch", o->batch, "transitions per optimizer step (0: all training transitions)")->capture_default_str();

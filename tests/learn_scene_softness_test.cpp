@@ -7,9 +7,12 @@
 // - scene JSON: read, written back, bad values named;
 // - layout: "compliance", "erp" after everything else, per listed pair with mu_per_pair;
 //   apply/parameters round trip; the bounds (c ≥ 0, e in [0, 1]) clamp;
-// - ∂ℓ/∂(c, e) of the hard and the relaxed loss against central differences of the whole
-//   pipeline on steps of a small generated pile;
-// - refusals: the convex loss and model, the relaxed-dual loss, the polygon flags.
+// - ∂ℓ/∂(c, e) of the hard, relaxed and convex losses against central differences of the
+//   whole pipeline on steps of a small generated pile;
+// - the convex model: c on phase 2's λn diagonal and the push-out in v_ref, so that a lone
+//   sliding-free contact's stationarity reads Jn v⁺ + e·min(φ,0)/Δt + c·λn = −g Wnn λn;
+//   the convex Simulator runs a soft scene; zero softness leaves its answer bit for bit;
+// - refusals: the relaxed-dual loss, the polygon flags, bad values.
 #include "learn_scene_fd_support.hpp"
 
 #include <lcprelax/core/errors.hpp>
@@ -227,14 +230,47 @@ void check_softness_gradient(LossMethod method) {
 
 TEST(SceneSoftness, HardLossGradientMatchesCentralDifferences) { check_softness_gradient(LossMethod::hard); }
 TEST(SceneSoftness, RelaxedLossGradientMatchesCentralDifferences) { check_softness_gradient(LossMethod::relaxed); }
+TEST(SceneSoftness, ConvexLossGradientMatchesCentralDifferences) { check_softness_gradient(LossMethod::convex); }
 
-TEST(SceneSoftness, RefusedByTheConvexModelAndLosses) {
+TEST(SceneSoftness, ConvexModelTakesComplianceAndPushOut) {
+  // The unit box 2 mm into the ground, frictionless (one row per contact, no phase-2 friction),
+  // at rest: phase 2's stationarity where λn > 0 and the hard rows are inactive reads
+  // Jn v⁺ = v_ref − (g·Wnn + c) λn, with v_ref = −e·min(φ, 0)/Δt (exp_phi's own v_ref is 0).
+  const double dt = 0.01, c = 0.5, e = 0.4;
+  World w = box_on_ground(-0.002);
+  w.friction.default_mu = 0.0;
+  const StepContacts rigid_found = find_step_contacts(w, SimulatorSettings{});
+  const ContactSystem s0 = assemble_contact_system(w, rigid_found.contacts, rigid_found.islands[0], dt);
+  QpSettings qs;
+  qs.eps_abs = 1e-12;
+  const ContactSolution r0 = solve_convex_model(s0, dt, qs);
+  w.friction.default_compliance = c;
+  w.friction.default_erp = e;
+  const StepContacts found = find_step_contacts(w, SimulatorSettings{});
+  const ContactSystem s = assemble_contact_system(w, found.contacts, found.islands[0], dt);
+  const ContactSolution r = solve_convex_model(s, dt, qs);
+  ASSERT_EQ(r.status, ContactStatus::solved) << r.message;
+  const Vector vn = s.Jn * r.v_next;
+  const double rho = 1e-3;  // solve_convex_model's default; exp_phi: g = 2ρ exp(φ)
+  const SparseMatrix W = delassus(s);
+  for (Index i = 0; i < 2; ++i) {
+    ASSERT_GT(r.lambda_n(i), 1e-6);
+    const double g = 2.0 * rho * std::exp(s.phi(i));
+    const double lhs = vn(i) + e * s.phi(i) / dt + c * r.lambda_n(i);
+    EXPECT_NEAR(lhs, -g * W.coeff(i, i) * r.lambda_n(i), 1e-8) << "contact " << i;
+  }
+  EXPECT_GT(r.v_next(1), r0.v_next(1)) << "the erp pushes the box out of the overlap";
+  // Zero softness: the answer of the system without it, bit for bit.
+  World zero = w;
+  zero.friction.default_compliance = zero.friction.default_erp = 0.0;
+  const StepContacts fz = find_step_contacts(zero, SimulatorSettings{});
+  const ContactSolution rz = solve_convex_model(assemble_contact_system(zero, fz.contacts, fz.islands[0], dt), dt, qs);
+  EXPECT_EQ(rz.v_next, r0.v_next);
+}
+
+TEST(SceneSoftness, RefusedByTheRelaxedDualLossAndBadValues) {
   SceneDataset data = soft_pile();
   data.transitions.resize(3);
-  const SceneParameterMap map(data.scene.world, learn("mu,softness"));
-  SceneLossSettings ls;
-  ls.method = LossMethod::convex;
-  EXPECT_THROW(SceneObjective(data, map, ls), InputError);
   World w = data.scene.world;
   w.friction.default_compliance = 0.01;
   const StepContacts found = find_step_contacts(w, data.scene.settings);
@@ -242,18 +278,23 @@ TEST(SceneSoftness, RefusedByTheConvexModelAndLosses) {
   const double dt = data.scene.settings.dt;
   const ContactSystem s = assemble_contact_system(w, found.contacts, found.islands[0], dt);
   EXPECT_THROW(relaxed_dual_step_loss(s, s.v_star, dt), InputError);
-  EXPECT_THROW(convex_step_loss(s, s.v_star, dt, ConvexStepLossSettings{}), InputError);
-  EXPECT_THROW(solve_convex_model(s, dt, QpSettings{}), InputError);
+  EXPECT_NO_THROW(convex_step_loss(s, s.v_star, dt, ConvexStepLossSettings{}));
+  EXPECT_NO_THROW(solve_convex_model(s, dt, QpSettings{}));
   EXPECT_NO_THROW(relaxed_step_loss(s, s.v_star, dt));
   EXPECT_NO_THROW(hard_step_loss(s, s.v_star, dt));
   SimulatorSettings convex = data.scene.settings;
   convex.model = ContactModel::convex;
-  EXPECT_THROW(Simulator(w, convex), InputError);
+  Simulator soft_convex(w, convex);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(soft_convex.step().failed_islands, 0);
   SimulatorSettings lcp = data.scene.settings;
   lcp.model = ContactModel::lcp;
   EXPECT_NO_THROW(Simulator(w, lcp));
   w.friction.default_erp = 1.5;
   EXPECT_THROW(Simulator(w, lcp), InputError);
+  EXPECT_THROW(Simulator(w, convex), InputError);
+  ContactSystem bad = s;
+  bad.compliance(0) = -1.0;
+  EXPECT_THROW(solve_convex_model(bad, dt, QpSettings{}), InputError);
   EXPECT_THROW(parse_polygon_learn_flags("mu,softness"), InputError);
   EXPECT_TRUE(parse_scene_learn_flags("mu,softness").softness);
 }

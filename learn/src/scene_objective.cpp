@@ -47,12 +47,6 @@ SceneObjective::SceneObjective(const SceneDataset& data, const SceneParameterMap
   if (map_.learns_lcp_block() && settings_.method != LossMethod::hard)
     throw InputError("scene loss: the lcp model's per-contact LCP block (learn block or block_tied) is learned with the "
                      "hard loss only");
-  if (map_.learns_softness() && settings_.method == LossMethod::convex)
-    throw InputError("scene loss: the friction table's normal compliance and erp (learn softness) belong to the lcp "
-                     "model; learn them with the relaxed or the hard loss");
-  if (data_.scene.world.friction.has_softness() && settings_.method == LossMethod::convex)
-    throw InputError("scene loss: the scene's friction table has normal compliance or erp, which the convex model does "
-                     "not take; use the relaxed or the hard loss");
   centers_.resize(data_.transitions.size());
 }
 

@@ -430,8 +430,7 @@ double scene_relative_error(const ParameterSet& estimate, const ParameterSet& tr
     case SceneParameterMap::Kind::residual:
     case SceneParameterMap::Kind::lcp_block:
     case SceneParameterMap::Kind::erp: return d;
-    case SceneParameterMap::Kind::compliance: return d / map.length_scale(k);
-    default: return d / map.length_scale(k);
+    default: return d / map.length_scale(k);  // vertices, gaps, offsets, segment ends, compliance
   }
 }
 

@@ -87,7 +87,9 @@ class ConvexStepSolve {
     const Vector gap = s.phi.cwiseMax(0.0) / dt;
     const Vector bn = s.Jn * s.v_star + gap;
     // The softening's target velocity lowers both phases' λn terms (0 for exp_phi).
-    const NormalSofteningTerms soft = normal_softening_terms(settings.softening, rho, dt, s.phi, s.Jn * s.v_star);
+    NormalSofteningTerms soft = normal_softening_terms(settings.softening, rho, dt, s.phi, s.Jn * s.v_star);
+    if (const std::string e = normal_softness_error(s); !e.empty()) throw InputError("convex step loss: " + e);
+    if (has_normal_softness(s)) add_pair_softness(soft, s.phi, s.compliance, s.erp, dt);  // FrictionTable's c, e
     const NormalSofteningTerms soft1 = phase1_softening_terms(soft);  // max(v_ref, 0)
     const Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap - soft1.v_ref;
     if (nc == 0 || (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0 && (bn - soft1.v_ref).minCoeff() >= 0.0)) {
@@ -212,9 +214,6 @@ void check_call(const ContactSystem& s, const Vector& target, double dt, const C
   if (s.lcp_block.enabled)
     throw InputError("the convex step loss has no LCP: World::lcp_block (the per-contact LCP correction) is learned "
                      "with the hard loss");
-  if (has_normal_softness(s))
-    throw InputError("the convex step loss does not take normal compliance or erp (FrictionTable): they apply to the "
-                     "lcp model; learn them with the relaxed or the hard loss");
 }
 
 void mark_inaccurate_adjoint(ContactStatus& status, std::string& message, double adjoint) {

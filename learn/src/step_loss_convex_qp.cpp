@@ -73,7 +73,7 @@ ConvexLossQp convex_loss_phase2(const ConvexLossData& d, const NormalSofteningTe
 ConvexLossPullback::ConvexLossPullback(const ConvexLossData& data)
     : d(data), Jn_bar(zero_like(data.s.Jn)), Jt_bar(zero_like(data.s.Jt)) {
   if (!d.lifted) W_bar = zero_like(d.W);
-  bn_bar = gap_bar = w_nn_bar = phi_bar = vn_bar = Vector::Zero(d.nc);
+  bn_bar = gap_bar = w_nn_bar = phi_bar = vn_bar = compliance_bar = erp_bar = Vector::Zero(d.nc);
   mu_bar = Vector::Zero(d.nf);
   c_bar = minv_bar = Vector::Zero(d.nv);
 }
@@ -108,6 +108,7 @@ double ConvexLossPullback::add_phase(int phase, const ConvexLossQp& qp, const Qp
       const double vref_bar = -q_bar(i);
       phi_bar(i) += vref_bar * qp.softening.dvref_dphi(i);
       vn_bar(i) += vref_bar * qp.softening.dvref_dvn(i);
+      if (qp.softening.dvref_derp.size() == nc) erp_bar(i) += vref_bar * qp.softening.dvref_derp(i);
     }
   // l = −bn on the contact rows.
   if (g.dl.size() >= nc) bn_bar -= g.dl.head(nc);
@@ -115,6 +116,7 @@ double ConvexLossPullback::add_phase(int phase, const ConvexLossQp& qp, const Qp
   auto add_rho = [&](Index i, double v) {
     phi_bar(i) += v * qp.softening.dg_dphi(i) * d.w_nn(i);
     w_nn_bar(i) += v * qp.softening.g(i);
+    compliance_bar(i) += v;  // r_i = g_i Wnn_i + c_i
   };
   for (Index j = 0; j < g.dP.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(g.dP, j); it; ++it) {
@@ -196,6 +198,8 @@ void ConvexLossPullback::finish(ContactSystemCotangent& out) {
   for (Index i = 0; i < d.nc; ++i)
     if (s.phi(i) > 0.0) phi_bar(i) += gap_bar(i) / d.dt;
   out.phi += phi_bar;
+  if (out.compliance.size() == d.nc) out.compliance += compliance_bar;
+  if (out.erp.size() == d.nc) out.erp += erp_bar;
   out.mu += mu_bar;
   out.minv += minv_bar;
   out.Jn += Jn_bar;

@@ -63,6 +63,7 @@ struct ConvexLossPullback {
   SparseMatrix Jn_bar, Jt_bar;  ///< on Jn's and Jt's patterns
   SparseMatrix W_bar;           ///< dual: on W's pattern (not symmetric)
   Vector bn_bar, gap_bar, c_bar, w_nn_bar, phi_bar, mu_bar, minv_bar;
+  Vector compliance_bar, erp_bar;  ///< a pair's normal softness (normal_softening.hpp add_pair_softness)
   Vector vn_bar;  ///< of vn = Jn v* in the softening's target velocity
 
  private:

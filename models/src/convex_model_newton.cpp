@@ -36,15 +36,14 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   if (s.lcp_block.enabled)
     throw InputError("the convex model has no LCP: World::lcp_block (the per-contact LCP correction) applies to the lcp "
                      "model only");
-  if (has_normal_softness(s))
-    throw InputError("the convex model does not take normal compliance or erp (FrictionTable): they apply to the lcp "
-                     "model only; its normal softening is NormalSofteningSettings");
   const Index nc = s.num_contacts(), nf = s.num_friction();
   if (!warm.empty() && static_cast<Index>(warm.size()) != nc + nf)
     throw InputError("solve_convex_model_newton: warm needs nc + nf entries");
   const Vector vn = s.Jn * s.v_star;
   const Vector bn = vn + s.phi.cwiseMax(0.0) / dt;
-  const NormalSofteningTerms soft = normal_softening_terms(softening, rho, dt, s.phi, vn);
+  NormalSofteningTerms soft = normal_softening_terms(softening, rho, dt, s.phi, vn);
+  if (const std::string e = normal_softness_error(s); !e.empty()) throw InputError("convex model: " + e);
+  if (has_normal_softness(s)) add_pair_softness(soft, s.phi, s.compliance, s.erp, dt);  // FrictionTable's c, e
   const NormalSofteningTerms soft1 = phase1_softening_terms(soft);
   if (nc == 0 || (bn.minCoeff() >= 0.0 && (bn - soft1.v_ref).minCoeff() >= 0.0))
     return solve_convex_model(s, dt, settings, rho, formulation, softening, cache);  // λ = 0, no solve

@@ -118,12 +118,15 @@ ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTe
     std::vector<Triplet> t;
     for (Index i = 0; i < nv; ++i) t.emplace_back(i, i, scale / s.minv(i));
     for (Index i = 0; i < nc; ++i) t.emplace_back(ln + i, ln + i, soft.g(i) * d.w_nn(i));
+    for (Index i = 0; i < soft.compliance.size(); ++i)  // a pair's normal compliance (add_pair_softness)
+      if (soft.compliance(i) != 0.0) t.emplace_back(ln + i, ln + i, soft.compliance(i));
     p.P = from_triplets(n, n, t);
     lifted_momentum_equality(s, /*friction=*/true, p);
   } else {
     SparseMatrix P = d.W;
     if (scale != 1.0) P *= scale;
     for (Index i = 0; i < nc; ++i) P.coeffRef(i, i) += soft.g(i) * d.w_nn(i);
+    for (Index i = 0; i < soft.compliance.size(); ++i) P.coeffRef(i, i) += soft.compliance(i);
     p.P = upper_triangle(P);
   }
   std::vector<Triplet> g;

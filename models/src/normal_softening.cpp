@@ -75,10 +75,25 @@ NormalSofteningTerms normal_softening_terms(const NormalSofteningSettings& o, do
   return t;
 }
 
+void add_pair_softness(NormalSofteningTerms& t, const Vector& phi, const Vector& compliance, const Vector& erp,
+                       double dt) {
+  const Index nc = phi.size();
+  t.compliance = compliance.size() == nc ? compliance : Vector::Zero(nc);
+  t.dvref_derp = -phi.cwiseMin(0.0) / dt;
+  if (erp.size() != nc) return;
+  for (Index i = 0; i < nc; ++i) {
+    t.v_ref(i) += erp(i) * t.dvref_derp(i);
+    if (phi(i) < 0.0) t.dvref_dphi(i) -= erp(i) / dt;
+  }
+}
+
 NormalSofteningTerms phase1_softening_terms(const NormalSofteningTerms& terms) {
   NormalSofteningTerms t = terms;
   for (Index i = 0; i < t.v_ref.size(); ++i)
-    if (!(t.v_ref(i) > 0.0)) t.v_ref(i) = 0.0, t.dvref_dphi(i) = 0.0, t.dvref_dvn(i) = 0.0;
+    if (!(t.v_ref(i) > 0.0)) {
+      t.v_ref(i) = 0.0, t.dvref_dphi(i) = 0.0, t.dvref_dvn(i) = 0.0;
+      if (t.dvref_derp.size() > 0) t.dvref_derp(i) = 0.0;
+    }
   return t;
 }
 

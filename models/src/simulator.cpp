@@ -98,9 +98,6 @@ Simulator::Simulator(World world, SimulatorSettings settings) : world_(std::move
   check_softness(ft.default_compliance, ft.default_erp, "friction.");
   for (std::size_t i = 0; i < ft.pairs.size(); ++i)
     check_softness(ft.pairs[i].compliance, ft.pairs[i].erp, "friction.pairs[" + std::to_string(i) + "].");
-  if (ft.has_softness() && settings_.model != ContactModel::lcp)
-    throw InputError("friction: normal compliance and erp apply to the lcp contact model only (the convex model's "
-                     "normal softening is SimulatorSettings::convex_softening)");
   check_extreme_values();
 }
 
@@ -299,16 +296,13 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       wk.system = assemble_contact_system(world, contacts_, islands[i], dt, applied);
       const ContactSystem& s = wk.system;
       // The lcp model's fallbacks use the convex model, which has no LCP to correct: they take
-      // the physical, rigid model (World::lcp_block off, no normal softness); the island counts
-      // as failed either way.
-      std::optional<ContactSystem> stripped;  // made only when a fallback runs with either on
+      // the physical model (World::lcp_block off); the island counts as failed either way.
+      std::optional<ContactSystem> stripped;  // made only when a fallback runs with the block on
       auto without_block = [&s, &stripped]() -> const ContactSystem& {
-        if (!s.lcp_block.enabled && !has_normal_softness(s)) return s;
+        if (!s.lcp_block.enabled) return s;
         if (!stripped) {
           stripped = s;
           stripped->lcp_block = ContactLcpBlock{};
-          stripped->compliance.resize(0);
-          stripped->erp.resize(0);
         }
         return *stripped;
       };

@@ -12,7 +12,7 @@
 // `learn` chooses the kinds (a comma-separated str or a list of "mu", "mass", "inertia",
 // "vertices", "ground", "gap", "residual", "block", "block_tied", "softness"; block and
 // block_tied: the lcp model's per-contact LCP correction, method 'hard' only; softness: the
-// friction table's normal "compliance" (1/kg) and "erp", methods 'hard' and 'relaxed'); θ holds only the learned ones (parameter_names),
+// friction table's normal "compliance" (1/kg) and "erp", any method); θ holds only the learned ones (parameter_names),
 // the others stay at the scene's values. true_values: θ of the scene itself (the data's
 // truth); perturbed_values(fraction, seed): a deterministic perturbation of it (the CLI's
 // --perturb). Conventions of evaluate(): objective.hpp.

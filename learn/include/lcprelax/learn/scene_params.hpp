@@ -34,8 +34,8 @@
 //                        (d = (qn, qt, −qt, 0)): the friction rows' antisymmetry imposed.
 //   apply() enables the world's correction when either flag is set; parameters() reads each
 //   entry's value from the world (the first entry a tied parameter sets).
-//   Last, flag softness (lcp model: the hard and relaxed losses; the convex and relaxed-dual
-//   losses refuse it): the normal softness of the friction table (world.hpp FrictionTable),
+//   Last, flag softness (every SceneObjective loss; the relaxed-dual step loss refuses it):
+//   the normal softness of the friction table (world.hpp FrictionTable),
 //   "compliance" (identity, ≥ 0, 1/kg, scale the classes' mean 1/m) and "erp" (identity, in
 //   [0, 1]) for the table's default, then per material pair with its own μ (mu_per_pair)
 //   "compliance[a,b]", "erp[a,b]"; the rigid model is 0 for both.

@@ -8,7 +8,7 @@
 // post-stabilization (simulator.hpp). Exception: a material pair with normal softness
 // (compliance c, erp e; world.hpp FrictionTable) gives the lcp model's normal row
 // Jn v⁺ + (max(φ,0) + e·min(φ,0))/Δt + c·λn (an implicit spring–damper); the convex model
-// refuses such a system (InputError).
+// adds c and the push-out −e·min(φ,0)/Δt to its normal softening (normal_softening.hpp).
 //
 // lcp (Stewart & Trinkle 1996; Anitescu & Potra 1997), unknowns z = [λn, β⁺, β⁻, γ]
 // (β± per friction row, λt = β⁺ − β⁻, γ the sliding speed):
@@ -163,8 +163,8 @@ constexpr Index kLiftedMinContacts = 24;
 /// 10⁶ times heavier than the boxes it rests on, tests/dynamics_mass_ratio_test.cpp),
 /// the result has status failed and carries phase 1's frictionless answer (λn, λt = 0, v⁺).
 /// `softening` chooses phase 2's normal softening (validated: InputError when invalid).
-/// The convex model has no LCP: InputError when s.lcp_block is enabled (world.hpp) or when a
-/// contact has normal compliance or erp (has_normal_softness).
+/// The convex model has no LCP: InputError when s.lcp_block is enabled (world.hpp). A
+/// contact's normal compliance and erp enter through add_pair_softness (normal_softening.hpp).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
                                    double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic,
                                    const NormalSofteningSettings& softening = {});

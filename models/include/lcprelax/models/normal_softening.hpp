@@ -81,12 +81,25 @@ struct NormalSofteningTerms {
   Vector v_ref;       ///< m/s
   Vector dvref_dphi;  ///< ∂v_ref/∂φ (1/s)
   Vector dvref_dvn;   ///< ∂v_ref/∂vn (dimensionless)
+  // A material pair's normal softness (world.hpp FrictionTable; add_pair_softness), empty
+  // when no contact has one:
+  Vector compliance;  ///< c_i (1/kg), added to r_i on phase 2's λn diagonal
+  Vector dvref_derp;  ///< ∂v_ref/∂e_i (m/s): v_ref_i gains −e_i·min(φ_i, 0)/Δt
 };
 
 /// The terms for gaps `phi` and normal velocities `vn` = Jn v* (one per contact), with the
 /// model's ρ and step Δt (s). Settings are assumed valid.
 NormalSofteningTerms normal_softening_terms(const NormalSofteningSettings& settings, double rho, double dt,
                                             const Vector& phi, const Vector& vn);
+
+/// Adds a material pair's normal softness to the terms (the lcp model's normal row
+/// Jn v⁺ + (max(φ,0) + e·min(φ,0))/Δt + c·λn, contact_system.hpp): r_i += c_i and
+/// v_ref_i += −e_i·min(φ_i, 0)/Δt (a push-out of the fraction e of an overlap), so that where
+/// phase 2's constraints are inactive Jn_i v⁺ + e_i min(φ_i, 0)/Δt + c_i λn_i equals the
+/// softening's own v_ref_i − g_i Wnn_i λn_i. `compliance` and `erp` one per contact (or
+/// empty: 0).
+void add_pair_softness(NormalSofteningTerms& terms, const Vector& phi, const Vector& compliance, const Vector& erp,
+                       double dt);
 
 /// Phase 1's terms: v_ref replaced by max(v_ref, 0) (derivatives 0 where v_ref ≤ 0: a kink
 /// at v_ref = 0); g unchanged (phase 1 does not use it).

@@ -81,8 +81,9 @@ struct Segment {
 /// e = Δt·k/(Δt·k + d), i.e. k = e/(c·Δt²), d = (1 − e)/(c·Δt). e is the fraction of an
 /// overlap that the step's velocity removes (the position projection removes the rest);
 /// a positive gap keeps the rigid term φ/Δt. The rigid model is c = 0, e = 0 (defaults).
-/// The convex model's normal softening is models/normal_softening.hpp: the convex Simulator
-/// and the convex and relaxed-dual losses refuse a nonzero c or e (InputError).
+/// The convex model takes them on top of its own normal softening (models/normal_softening.hpp
+/// add_pair_softness: c on phase 2's λn diagonal, the push-out −e·min(φ, 0)/Δt in its target
+/// velocity); the relaxed-dual loss refuses a nonzero c or e (InputError).
 struct FrictionTable {
   double default_mu = 0.5;
   double default_compliance = 0.0;  ///< c (1/kg), ≥ 0
