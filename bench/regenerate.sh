@@ -93,13 +93,22 @@ run "$B/run_learning_curves_scene" --scene polygon --params physical,softness --
   --optimizer lbfgs --epochs 100 --sizes 10,30,100,300,1000 --seeds 5 --test 400 --sanity-size 100 \
   --csv "$R/learning_curves_scene_polygon_soft_truth.csv" \
   --plot "$R/plots/learning_curves_scene_polygon_soft_truth.png" > "$R/learning_curves_scene_polygon_soft_truth.txt"
+run "$B/run_learning_curves_scene" --scene polygon --params physical,softness --true-compliance 0.1 --true-erp 0.2 \
+  --loss hard --optimizer lbfgs --epochs 100 --start relaxed --sizes 10,30,100,300,1000 --seeds 5 --test 400 \
+  --sanity-size 0 --csv "$R/learning_curves_scene_polygon_soft_truth_staged.csv" \
+  > "$R/learning_curves_scene_polygon_soft_truth_staged.txt"
+run "$B/run_learning_curves_scene" --scene pile30 --params physical,softness --true-compliance 0.02 --true-erp 0.2 \
+  --optimizer lbfgs --epochs 100 --sizes 10,30 --seeds 5 --test 30 --sanity-size 10 \
+  --csv "$R/learning_curves_scene_pile30_soft_truth.csv" \
+  --plot "$R/plots/learning_curves_scene_pile30_soft_truth.png" > "$R/learning_curves_scene_pile30_soft_truth.txt"
 { head -1 "$R/learning_curves_scene_polygon.csv"
   for f in polygon polygon_residual polygon_lbfgs polygon_lbfgs_10k polygon_hard polygon_hard_staged \
-           polygon_softness polygon_softness_staged polygon_soft_truth pile30 pile30_n100; do
+           polygon_softness polygon_softness_staged polygon_soft_truth polygon_soft_truth_staged pile30 pile30_n100 \
+           pile30_soft_truth; do
     tail -n +2 "$R/learning_curves_scene_$f.csv"
   done
 } > "$R/learning_curves_scene.csv"
-cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,polygon_lbfgs_10k,polygon_hard,polygon_hard_staged,polygon_softness,polygon_softness_staged,polygon_soft_truth,pile30,pile30_n100}.txt > "$R/learning_curves_scene.txt"
+cat "$R"/learning_curves_scene_{polygon,polygon_residual,polygon_lbfgs,polygon_lbfgs_10k,polygon_hard,polygon_hard_staged,polygon_softness,polygon_softness_staged,polygon_soft_truth,polygon_soft_truth_staged,pile30,pile30_n100,pile30_soft_truth}.txt > "$R/learning_curves_scene.txt"
 run python3 bench/learning_curve_table.py --csv "$R/learning_curves.csv" --csv "$R/learning_curves_hard_10k.csv" \
   --scene-csv "$R/learning_curves_scene.csv" > "$R/learning_curves.md"
 run "$B/bench_learn_block" --benchmark_min_time=0.5 > "$R/learn_block.txt"

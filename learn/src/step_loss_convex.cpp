@@ -89,7 +89,8 @@ class ConvexStepSolve {
     // The softening's target velocity lowers both phases' λn terms (0 for exp_phi).
     NormalSofteningTerms soft = normal_softening_terms(settings.softening, rho, dt, s.phi, s.Jn * s.v_star);
     if (const std::string e = normal_softness_error(s); !e.empty()) throw InputError("convex step loss: " + e);
-    if (has_normal_softness(s)) add_pair_softness(soft, s.phi, s.compliance, s.erp, dt);  // FrictionTable's c, e
+    // FrictionTable's c, e; also at c = e = 0, for the terms' derivatives in e (∂v_ref/∂e).
+    add_pair_softness(soft, s.phi, s.compliance, s.erp, dt);
     const NormalSofteningTerms soft1 = phase1_softening_terms(soft);  // max(v_ref, 0)
     const Vector q1 = s.Jn * ((1.0 + w1) * s.v_star - w1 * target) + gap - soft1.v_ref;
     if (nc == 0 || (bn.minCoeff() >= 0.0 && q1.minCoeff() >= 0.0 && (bn - soft1.v_ref).minCoeff() >= 0.0)) {

@@ -95,12 +95,18 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
   s.phi.resize(nc);
   std::vector<Triplet> tn, tt;
   std::vector<double> mu;
-  s.compliance.resize(nc);
-  s.erp.resize(nc);
+  bool soft = false;  // the per-contact softness vectors stay empty for a rigid island
+  for (Index i = 0; i < nc && !soft; ++i) {
+    const Contact& c = contacts[s.contacts[i]];
+    soft = c.compliance != 0.0 || c.erp != 0.0;
+  }
+  if (soft) {
+    s.compliance.resize(nc);
+    s.erp.resize(nc);
+  }
   for (Index i = 0; i < nc; ++i) {
     const Contact& c = contacts[s.contacts[i]];
-    s.compliance(i) = c.compliance;
-    s.erp(i) = c.erp;
+    if (soft) s.compliance(i) = c.compliance, s.erp(i) = c.erp;
     if (block[c.body_a] < 0) throw InputError("contact body_a is not in the island");
     const double offset = contact_gap_offset(world, c);
     s.phi(i) = offset == 0.0 ? c.gap : c.gap + offset;

@@ -19,9 +19,10 @@
 // a body gets + W (vx, vy, ω, 1). Both are skipped where they are exactly 0, so a world
 // without them assembles bit for bit as before. World::lcp_block is copied as it is (the
 // lcp model's stewart_trinkle_lcp applies it). Each contact's normal softness (compliance c,
-// erp e: FrictionTable, world.hpp) is copied per contact; stewart_trinkle_lcp and the hard
-// and relaxed learning losses read the normal row as (Jn v⁺)ᵢ + normal_gap_rate(s, Δt)ᵢ +
-// cᵢ λnᵢ. A hand-made system may leave both vectors empty (= all zero).
+// erp e: FrictionTable, world.hpp) is copied per contact when some contact of the island has
+// one (else both vectors stay empty = all zero, as a hand-made system may leave them);
+// stewart_trinkle_lcp and the learning losses read the normal row as (Jn v⁺)ᵢ +
+// normal_gap_rate(s, Δt)ᵢ + cᵢ λnᵢ.
 #include <lcprelax/world/world.hpp>
 #include <lcprelax/sparse/types.hpp>
 

@@ -71,7 +71,7 @@ struct Segment {
 /// The contact material table: per pair of materials the friction coefficient μ and the
 /// normal row's softness (compliance c, erp e); the defaults where no pair is listed.
 ///
-/// Softness (lcp model only; models/contact_step.hpp, stewart_trinkle_lcp): contact i's
+/// Softness (models/contact_step.hpp: stewart_trinkle_lcp, and the convex model): contact i's
 /// normal row of the Stewart–Trinkle LCP becomes
 ///     w_n,i = (Jn v⁺)_i + (max(φ_i, 0) + e·min(φ_i, 0))/Δt + c·λn_i ≥ 0  ⊥  λn_i ≥ 0,
 /// c in 1/kg (velocity per normal impulse, m/s per N·s), e dimensionless in [0, 1]. Where
