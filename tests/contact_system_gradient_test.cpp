@@ -5,7 +5,9 @@
 // differentiated with respect to every primitive: the vertices of every body (static ones
 // too), every dynamic body's mass and inertia, half-plane normals and offsets, segment end
 // points and every contact's μ. Checked on a settled 20-body pile (≥ 60 contacts) and on
-// small two-shape worlds covering every feature kind and side.
+// small two-shape worlds covering every feature kind and side. The forward mode
+// (contact_system_tangent) is checked on the pile made soft, where the per-contact normal
+// compliance and erp enter the data, the tangent and the adjoint identity too.
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/contact/contact_features.hpp>
 #include <lcprelax/contact/polygon.hpp>
@@ -59,6 +61,8 @@ double inner_difference(const ContactSystemCotangent& ct, const ContactSystem& p
   }
   sum += ct.phi.dot(plus.phi - minus.phi) + ct.mu.dot(plus.mu - minus.mu);
   sum += ct.minv.dot(plus.minv - minus.minv) + ct.v_star.dot(plus.v_star - minus.v_star);
+  if (plus.compliance.size() > 0)  // soft islands only (rigid ones carry no softness vectors)
+    sum += ct.compliance.dot(plus.compliance - minus.compliance) + ct.erp.dot(plus.erp - minus.erp);
   return sum;
 }
 
@@ -67,7 +71,7 @@ ContactSystemCotangent random_cotangent(const ContactSystem& s, std::mt19937_64&
   ct.set_zero(s);
   for (Index k = 0; k < ct.Jn.nonZeros(); ++k) ct.Jn.valuePtr()[k] = uniform(rng, -1.0, 1.0);
   for (Index k = 0; k < ct.Jt.nonZeros(); ++k) ct.Jt.valuePtr()[k] = uniform(rng, -1.0, 1.0);
-  for (Vector* v : {&ct.phi, &ct.mu, &ct.minv, &ct.v_star})
+  for (Vector* v : {&ct.phi, &ct.mu, &ct.minv, &ct.v_star, &ct.compliance, &ct.erp})
     for (Index k = 0; k < v->size(); ++k) (*v)(k) = uniform(rng, -1.0, 1.0);
   return ct;
 }
@@ -201,14 +205,17 @@ TEST(ContactSystemGradient, SettledPileMatchesCentralDifferences) {
 }
 
 // Forward mode: contact_system_tangent against central differences along a random direction
-// of every primitive at once, and against the reverse mode (⟨ct, T dir⟩ = ⟨g, dir⟩).
+// of every primitive at once, and against the reverse mode (⟨ct, T dir⟩ = ⟨g, dir⟩); the
+// contacts are made soft (per-contact normal compliance and erp, which the tangent passes
+// through and the adjoint accumulates per contact).
 TEST(ContactSystemGradient, ForwardModeMatchesCentralDifferencesAndTheAdjoint) {
   const Simulator& sim = settled_pile();
   std::mt19937_64 rng(9);
   const World& world = sim.world();
   const double dt = sim.settings().dt;
   const std::vector<Vec3> applied = random_applied(world, rng);
-  const std::vector<Contact> contacts = find_step_contacts(world, sim.settings(), applied).contacts;
+  std::vector<Contact> contacts = find_step_contacts(world, sim.settings(), applied).contacts;
+  for (Contact& c : contacts) c.compliance = uniform(rng, 0.01, 0.1), c.erp = uniform(rng, 0.1, 0.9);
   const std::vector<Island> islands = find_islands(world, contacts);
   WorldGradient dir;
   dir.set_zero(world, contacts.size());
@@ -223,6 +230,8 @@ TEST(ContactSystemGradient, ForwardModeMatchesCentralDifferencesAndTheAdjoint) {
   for (auto& ends : dir.segment_ends)
     for (Vec2& e : ends) e = Vec2(uniform(rng, -1, 1), uniform(rng, -1, 1));
   for (double& m : dir.contact_mu) m = uniform(rng, -1, 1);
+  for (double& c : dir.contact_compliance) c = uniform(rng, -0.01, 0.01);
+  for (double& e : dir.contact_erp) e = uniform(rng, -0.1, 0.1);
 
   auto moved = [&](double h, World& w, std::vector<Contact>& cs) {
     w = world, cs = contacts;
@@ -235,7 +244,11 @@ TEST(ContactSystemGradient, ForwardModeMatchesCentralDifferencesAndTheAdjoint) {
       w.half_planes[p].normal += h * dir.half_plane_normal[p], w.half_planes[p].offset += h * dir.half_plane_offset[p];
     for (std::size_t k = 0; k < w.segments.size(); ++k)
       w.segments[k].a += h * dir.segment_ends[k][0], w.segments[k].b += h * dir.segment_ends[k][1];
-    for (std::size_t c = 0; c < cs.size(); ++c) cs[c].mu += h * dir.contact_mu[c];
+    for (std::size_t c = 0; c < cs.size(); ++c) {
+      cs[c].mu += h * dir.contact_mu[c];
+      cs[c].compliance += h * dir.contact_compliance[c];
+      cs[c].erp += h * dir.contact_erp[c];
+    }
     refresh_contacts(w, cs);
   };
   const double h = 1e-6;
@@ -258,7 +271,9 @@ TEST(ContactSystemGradient, ForwardModeMatchesCentralDifferencesAndTheAdjoint) {
     ASSERT_EQ(t.Jn.nonZeros(), s.Jn.nonZeros());
     compare(t.Jn.valuePtr(), sp.Jn.valuePtr(), sm.Jn.valuePtr(), t.Jn.nonZeros());
     compare(t.Jt.valuePtr(), sp.Jt.valuePtr(), sm.Jt.valuePtr(), t.Jt.nonZeros());
-    for (const auto member : {&ContactSystem::phi, &ContactSystem::mu, &ContactSystem::minv, &ContactSystem::v_star})
+    ASSERT_EQ(s.compliance.size(), s.num_contacts());  // soft: the vectors exist
+    for (const auto member : {&ContactSystem::phi, &ContactSystem::mu, &ContactSystem::minv, &ContactSystem::v_star,
+                              &ContactSystem::compliance, &ContactSystem::erp})
       compare((t.*member).data(), (sp.*member).data(), (sm.*member).data(), (t.*member).size());
 
     const ContactSystemCotangent ct = random_cotangent(s, rng);
@@ -267,7 +282,8 @@ TEST(ContactSystemGradient, ForwardModeMatchesCentralDifferencesAndTheAdjoint) {
     accumulate_world_gradient(world, contacts, s, dt, applied, ct, g);
     ContactSystem zero = t;
     zero.Jn.coeffs().setZero(), zero.Jt.coeffs().setZero();
-    for (const auto member : {&ContactSystem::phi, &ContactSystem::mu, &ContactSystem::minv, &ContactSystem::v_star})
+    for (const auto member : {&ContactSystem::phi, &ContactSystem::mu, &ContactSystem::minv, &ContactSystem::v_star,
+                              &ContactSystem::compliance, &ContactSystem::erp})
       (zero.*member).setZero();
     const double forward = inner_difference(ct, t, zero);
     double reverse = 0.0;
@@ -279,7 +295,9 @@ TEST(ContactSystemGradient, ForwardModeMatchesCentralDifferencesAndTheAdjoint) {
       reverse += g.half_plane_normal[p].dot(dir.half_plane_normal[p]) + g.half_plane_offset[p] * dir.half_plane_offset[p];
     for (std::size_t k = 0; k < world.segments.size(); ++k)
       reverse += g.segment_ends[k][0].dot(dir.segment_ends[k][0]) + g.segment_ends[k][1].dot(dir.segment_ends[k][1]);
-    for (std::size_t c = 0; c < contacts.size(); ++c) reverse += g.contact_mu[c] * dir.contact_mu[c];
+    for (std::size_t c = 0; c < contacts.size(); ++c)
+      reverse += g.contact_mu[c] * dir.contact_mu[c] + g.contact_compliance[c] * dir.contact_compliance[c] +
+                 g.contact_erp[c] * dir.contact_erp[c];
     adjoint_worst = std::max(adjoint_worst, std::abs(forward - reverse) / std::max(std::abs(forward), 1e-300));
   }
   std::printf("forward mode: max relative error against central differences %.3g, |fwd - rev|/|fwd| %.3g\n", worst,
