@@ -315,7 +315,7 @@ StepLossResult RelaxedStepLossWorkspace::evaluate(const ContactSystem& s, const 
     const double e = s.erp.size() > 0 ? s.erp(c) : 0.0, share = a2 * S(c) * lnt(c) + zn(c);
     r.grad.phi(c) = s.phi(c) > 0.0 ? share / dt : e * share / dt;
     r.grad.erp(c) = share * std::min(s.phi(c), 0.0) / dt;
-    r.grad.compliance(c) = (a2 * S(c) * lnt(c) + zn(c)) * S(c) * lnt(c);
+    r.grad.compliance(c) = share * S(c) * lnt(c);
   }
   const Vector jny = s.Jn * y, jty = s.Jt * y;
   Vector dS = a2 * lnt.cwiseProduct(rate) - jny.cwiseProduct(lnt) +
