@@ -6,6 +6,7 @@
 #include <lcprelax/learn/polygon_scene.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/world/normal_softness.hpp>
 
 #include <cmath>
 #include <random>
@@ -34,8 +35,7 @@ std::string PolygonDataSettings::validation_error() const {
   if (!nonneg(spin)) return "spin: must be finite and >= 0";
   if (!nonneg(force_scale)) return "force_scale: must be finite and >= 0";
   if (!nonneg(noise)) return "noise: must be finite and >= 0";
-  if (!nonneg(compliance)) return "compliance: must be finite and >= 0";
-  if (!(erp >= 0.0 && erp <= 1.0)) return "erp: must be in [0, 1]";
+  if (std::string e = normal_softness_value_error(compliance, erp); !e.empty()) return e;
   if ((compliance != 0.0 || erp != 0.0) && model != ContactModel::lcp)
     return "compliance, erp: the normal softness needs model lcp";
   return {};

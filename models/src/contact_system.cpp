@@ -1,6 +1,7 @@
 // Islands (union–find) and contact Jacobian assembly (contact_system.hpp).
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/world/normal_softness.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -147,10 +148,10 @@ std::string normal_softness_error(const ContactSystem& s) {
   const Index nc = s.num_contacts();
   if (s.compliance.size() != 0 && s.compliance.size() != nc) return "compliance: one entry per contact or none";
   if (s.erp.size() != 0 && s.erp.size() != nc) return "erp: one entry per contact or none";
-  for (Index i = 0; i < s.compliance.size(); ++i)
-    if (!(std::isfinite(s.compliance(i)) && s.compliance(i) >= 0.0)) return "compliance: must be finite and >= 0";
-  for (Index i = 0; i < s.erp.size(); ++i)
-    if (!(s.erp(i) >= 0.0 && s.erp(i) <= 1.0)) return "erp: must be in [0, 1]";
+  for (Index i = 0; i < std::max(s.compliance.size(), s.erp.size()); ++i) {
+    std::string e = normal_softness_value_error(s.compliance.size() ? s.compliance(i) : 0.0, s.erp.size() ? s.erp(i) : 0.0);
+    if (!e.empty()) return e;
+  }
   return {};
 }
 

@@ -4,6 +4,7 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/world/normal_softness.hpp>
 
 #include <algorithm>
 #include <lcprelax/core/stopwatch.hpp>
@@ -92,8 +93,7 @@ Simulator::Simulator(World world, SimulatorSettings settings) : world_(std::move
     throw InputError("lcp_block: the per-contact LCP correction applies to the lcp contact model only");
   const FrictionTable& ft = world_.friction;
   auto check_softness = [](double c, double e, const std::string& where) {
-    if (!(std::isfinite(c) && c >= 0.0)) throw InputError(where + "compliance: must be finite and >= 0");
-    if (!(e >= 0.0 && e <= 1.0)) throw InputError(where + "erp: must be in [0, 1]");
+    if (const std::string error = normal_softness_value_error(c, e); !error.empty()) throw InputError(where + error);
   };
   check_softness(ft.default_compliance, ft.default_erp, "friction.");
   for (std::size_t i = 0; i < ft.pairs.size(); ++i)
