@@ -22,6 +22,11 @@ if [ -n "$MM64" ] && [ -d "$MM64" ]; then run "$B/run_maros_meszaros" "$MM64" --
 run "$B/bench_qp_random" --benchmark_out="$R/qp_random.json" --benchmark_out_format=json > "$R/qp_random.txt"
 run "$B/run_qp_scaling" --csv "$R/qp_scaling.csv" > "$R/qp_scaling.txt"
 OMP_NUM_THREADS=1 run "$B/bench_lemke" --benchmark_out="$R/lemke.json" --benchmark_out_format=json > "$R/lemke_sparse_vs_dense.txt"
+D=tests/data/siconos/fc2d
+{ echo "# $B/run_lemke_columns (fc2d files, --repeat 3; then --pile-bodies 400 --pile-steps 70)"
+  run "$B/run_lemke_columns" "$D/fc2d_granularflowonwall_00667_00000.dat" "$D/fc2d_granularflowonwall_02020_00213.dat" \
+    tests/data/generated/fc2d_pile_00186_b60_s150.dat --repeat 3
+  run "$B/run_lemke_columns" --pile-bodies 400 --pile-steps 70; } > "$R/lemke_columns.txt"
 if [ -x "$B/run_lemke_peers" ]; then run "$B/run_lemke_peers" tests/data/siconos --out "$R/lemke_peers.csv" > "$R/lemke_peers.txt"; else echo "Siconos not built: lemke peers skipped" >&2; fi
 if [ "$QUICK" = "--quick" ]; then
   run "$B/run_pile_scaling" --sizes 10,20,50,100,200 --csv "$R/pile_scaling.csv" > "$R/pile_scaling.txt"

@@ -1,14 +1,17 @@
 // Hypersparse rows of B⁻¹ in Lemke's lexicographic ratio test (LemkeSettings::
 // sparse_tie_rows; lcp/src/lemke_lexicographic.hpp, sparse/hypersparse_solve.hpp):
-// - the hypersparse transposed solve with KLU's factors agrees with KLU's own dense
-//   transposed solve, on matrices where KLU finds BTF blocks (so the off-diagonal block F
-//   takes part) and scales rows, and reaches few nodes when the solution is sparse;
+// - the hypersparse transposed and column solves with KLU's factors agree with KLU's own
+//   dense solves, on matrices where KLU finds BTF blocks (so the off-diagonal block F
+//   takes part) and scales rows, and reach few nodes when the solution is sparse;
 // - Lemke with sparse tie rows takes exactly the pivot sequence of the full-row reference on
 //   degenerate LCPs (granular fc2d, 667 contacts; a redundant-contact LCP), where most
-//   pivots are decided by ties on rows of B⁻¹.
+//   pivots are decided by ties on rows of B⁻¹; so does Lemke with hypersparse entering
+//   columns (LemkeSettings::sparse_columns) against dense column solves, on those and on a
+//   polygon pile's LCP.
 #include <lcprelax/io/siconos_reader.hpp>
 #include <lcprelax/lcp/fc2d_lcp.hpp>
 #include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/sparse/hypersparse_column_solve.hpp>
 #include <lcprelax/sparse/hypersparse_solve.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
@@ -58,7 +61,10 @@ SparseMatrix permuted_block_triangular(std::mt19937& rng, Index n) {
   return A;
 }
 
-TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
+// Both hypersparse solvers against KLU's dense solves (transposed or not) on the matrices
+// above, for right-hand sides of 1–3 nonzeros.
+template <class Solver>
+void check_against_klu(bool transposed) {
   std::mt19937 rng(17);
   for (int trial = 0; trial < 6; ++trial) {
     const Index n = trial < 3 ? 40 : 400;
@@ -66,7 +72,8 @@ TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
     sparse::KluLu klu;
     ASSERT_TRUE(klu.analyze(A).ok());
     ASSERT_TRUE(klu.factorize(A).ok());
-    sparse::HypersparseTransposedSolver h;
+    Solver h;
+    h.reserve(klu);
     ASSERT_TRUE(h.build(klu));
     std::uniform_int_distribution<Index> pick(0, n - 1);
     std::normal_distribution<double> N(0.0, 1.0);
@@ -85,7 +92,7 @@ TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
       }
       Vector x = Vector::Zero(n);
       for (std::size_t k = 0; k < b_index.size(); ++k) x(b_index[k]) = b_value[k];
-      ASSERT_TRUE(klu.solve_transposed(x).ok());
+      ASSERT_TRUE((transposed ? klu.solve_transposed(x) : klu.solve(x)).ok());
       h.solve(static_cast<int>(b_index.size()), b_index.data(), b_value.data(), y_index, y_value);
       reached += h.last_reach();
       Vector y = Vector::Zero(n);
@@ -104,15 +111,22 @@ TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
   }
 }
 
+TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
+  check_against_klu<sparse::HypersparseTransposedSolver>(true);
+}
+
+TEST(HypersparseColumnSolve, AgreesWithKluDenseSolve) { check_against_klu<sparse::HypersparseColumnSolver>(false); }
+
 struct Traced {
   LcpResult result;
   std::vector<Index> trace;  // entering, leaving variable per pivot
 };
 
-Traced solve_traced(const SparseMatrix& M, const Vector& q, bool sparse_rows) {
+Traced solve_traced(const SparseMatrix& M, const Vector& q, bool sparse_rows, bool sparse_columns) {
   LemkeSettings s;
   s.method = LemkeMethod::sparse;
   s.sparse_tie_rows = sparse_rows;
+  s.sparse_columns = sparse_columns;
   s.covering_retries = 0;
   s.regularization_retries = 0;
   LemkeSolver solver(s);
@@ -123,20 +137,26 @@ Traced solve_traced(const SparseMatrix& M, const Vector& q, bool sparse_rows) {
   return t;
 }
 
-void expect_same_pivots(const SparseMatrix& M, const Vector& q, long min_tie_breaks) {
-  const Traced full = solve_traced(M, q, false);
-  const Traced sparse = solve_traced(M, q, true);
+// The reference (dense solves of the chosen kind) and the hypersparse variant take the same
+// pivots: rows = true compares tie rows (full vs sparse, dense columns in both), rows =
+// false the entering columns (dense vs sparse, sparse tie rows in both).
+// `expected`: the status both must end with (a plain Lemke path of a pile may end on a ray).
+void expect_same_pivots(const SparseMatrix& M, const Vector& q, long min_tie_breaks, bool rows = true,
+                        LcpStatus expected = LcpStatus::solved) {
+  const Traced full = rows ? solve_traced(M, q, false, false) : solve_traced(M, q, true, false);
+  const Traced sparse = rows ? solve_traced(M, q, true, false) : solve_traced(M, q, true, true);
   std::printf("full: %s %ld pivots %ld ties; sparse: %s %ld pivots %ld ties\n", to_string(full.result.info.status),
               full.result.info.pivots, full.result.info.tie_breaks, to_string(sparse.result.info.status),
               sparse.result.info.pivots, sparse.result.info.tie_breaks);
-  ASSERT_EQ(full.result.info.status, LcpStatus::solved) << full.result.info.message;
-  ASSERT_EQ(sparse.result.info.status, LcpStatus::solved) << sparse.result.info.message;
+  ASSERT_EQ(full.result.info.status, expected) << full.result.info.message;
+  ASSERT_EQ(sparse.result.info.status, expected) << sparse.result.info.message;
   EXPECT_GE(sparse.result.info.tie_breaks, min_tie_breaks);
   EXPECT_EQ(sparse.result.info.tie_breaks, full.result.info.tie_breaks);
   EXPECT_EQ(sparse.result.info.pivots, full.result.info.pivots);
   ASSERT_EQ(sparse.trace.size(), full.trace.size());
   for (std::size_t k = 0; k < full.trace.size(); ++k)
     ASSERT_EQ(sparse.trace[k], full.trace[k]) << "pivot " << k / 2;
+  if (expected != LcpStatus::solved) return;
   EXPECT_EQ(sparse.result.z_basic, full.result.z_basic);
   EXPECT_LE((sparse.result.z - full.result.z).lpNorm<Eigen::Infinity>(),
             1e-9 * std::max(1.0, full.result.z.lpNorm<Eigen::Infinity>()));
@@ -149,10 +169,25 @@ TEST(LemkeSparseTieRows, SamePivotSequenceAsFullRowsOnGranularFc2d) {
   expect_same_pivots(lcp.M, lcp.q, 50);
 }
 
+TEST(LemkeSparseColumns, SamePivotSequenceAsDenseSolvesOnGranularFc2d) {
+  const io::Fc2dData d = io::read_siconos_fc2d(std::string(LCPRELAX_TEST_DATA_DIR) +
+                                               "/siconos/fc2d/fc2d_granularflowonwall_00667_00000.dat");
+  const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
+  expect_same_pivots(lcp.M, lcp.q, 50, /*rows=*/false);
+}
+
+// A pile of polygons (tests/data/generated, 186 contacts): the degenerate family.
+TEST(LemkeSparseColumns, SamePivotSequenceAsDenseSolvesOnPolygonPile) {
+  const io::Fc2dData d =
+      io::read_siconos_fc2d(std::string(LCPRELAX_TEST_DATA_DIR) + "/generated/fc2d_pile_00186_b60_s150.dat");
+  const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
+  expect_same_pivots(lcp.M, lcp.q, 0, /*rows=*/false, LcpStatus::ray_termination);  // cold, no retries
+}
+
 // Redundant contacts: M = J Jᵀ (positive semidefinite, singular) with J (3k × k), and q =
 // w* − M z* for a solution z* ≥ 0, w* ≥ 0 with z*_i = w*_i = 0 in a third of the rows (a
 // solvable, highly degenerate LCP).
-TEST(LemkeSparseTieRows, SamePivotSequenceAsFullRowsOnRedundantContacts) {
+SparseMatrix redundant_contacts(Vector& q) {
   std::mt19937 rng(5);
   std::normal_distribution<double> N(0.0, 1.0);
   std::uniform_int_distribution<Index> body(0, 99);
@@ -169,8 +204,34 @@ TEST(LemkeSparseTieRows, SamePivotSequenceAsFullRowsOnRedundantContacts) {
     if (i % 3 == 0) z(i) = std::abs(N(rng));
     if (i % 3 == 1) w(i) = std::abs(N(rng));
   }
-  const Vector q = w - M * z;
+  q = w - M * z;
+  return M;
+}
+
+TEST(LemkeSparseTieRows, SamePivotSequenceAsFullRowsOnRedundantContacts) {
+  Vector q;
+  const SparseMatrix M = redundant_contacts(q);
   expect_same_pivots(M, q, 1);
+}
+
+// Its path visits nearly singular bases (KLU's rcond 1e-15…1e-13, measured), where the two
+// column solves differ by amplified roundoff (up to 1e-1 relative) and the plain pivot
+// paths part; with the default retries both solve the LCP to its tolerance.
+TEST(LemkeSparseColumns, SolvesRedundantContactsWithTheDefaultRetries) {
+  Vector q;
+  const SparseMatrix M = redundant_contacts(q);
+  for (const bool columns : {false, true}) {
+    LemkeSettings s;
+    s.method = LemkeMethod::sparse;
+    s.sparse_columns = columns;
+    LemkeSolver solver(s);
+    solver.setup(M, q);
+    const LcpResult& r = solver.solve();
+    ASSERT_EQ(r.info.status, LcpStatus::solved) << "sparse_columns " << columns << ": " << r.info.message;
+    const Vector w = M * r.z + q;
+    EXPECT_LE(r.z.cwiseMin(w).cwiseAbs().maxCoeff(), 1e-9 * q.lpNorm<Eigen::Infinity>());
+    EXPECT_GE(r.z.minCoeff(), 0.0);
+  }
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ void LemkeSolver::Impl::allocate() {
   method = dense ? LemkeMethod::dense : LemkeMethod::sparse;
   const detail::LemkeColumns cols{&M, &d, n};
   basis = dense ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
-                : detail::make_sparse_lemke_basis(cols, settings.refactor_interval);
+                : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns);
   factor_current = false;
   basic.assign(static_cast<std::size_t>(n), 0);
   factored_basic.assign(static_cast<std::size_t>(n), -1);

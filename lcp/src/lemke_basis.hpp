@@ -78,6 +78,8 @@ class LemkeBasis {
 };
 
 std::unique_ptr<LemkeBasis> make_dense_lemke_basis(const LemkeColumns& columns, int refactor_interval);
-std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval);
+/// sparse_columns: entering columns by hypersparse solves (LemkeSettings::sparse_columns).
+std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
+                                                    bool sparse_columns = true);
 
 }  // namespace lcprelax::detail

@@ -5,14 +5,19 @@
 // 1e-12. B₀ = I (the all-w basis Lemke starts from) is represented without KLU. Rows of
 // B⁻¹ for the lexicographic tie-breaks come from hypersparse transposed solves with B₀'s
 // factors (sparse/hypersparse_solve.hpp), copied row-wise from KLU at the first tie after
-// a factorization (a dense transposed solve if they cannot be extracted).
+// a factorization (a dense transposed solve if they cannot be extracted), and each
+// entering column's B₀⁻¹c from a hypersparse solve with the same factors
+// (sparse/hypersparse_column_solve.hpp; a dense solve if they cannot be extracted).
 //
+// W is kept dense (for S and the rows of B⁻¹) and by its nonzeros per column (for the
+// correction of each solved column, work Σ nnz(W_j) instead of n·|P|).
 // Work arrays (W, S and its LU, the CSC arrays of B₀, the solved column) are sized at
 // construction; S and its LU have fixed capacity kMaxSchurUpdates², and the small blocks
 // of the Schur updates live on the stack, so only klu_analyze/klu_factor allocate, and
 // the storage of the factors' row-wise copy, reserved right after each factorization.
 #include "lemke_basis.hpp"
 
+#include <lcprelax/sparse/hypersparse_column_solve.hpp>
 #include <lcprelax/sparse/hypersparse_solve.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
@@ -31,8 +36,9 @@ using SchurBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 
 class SparseLemkeBasis final : public LemkeBasis {
  public:
-  SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval)
+  SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval, bool sparse_columns)
       : cols_(columns),
+        sparse_columns_(sparse_columns),
         max_updates_(std::min(refactor_interval, kCap)),
         slot_(static_cast<std::size_t>(columns.n), -1),
         W_(columns.n, max_updates_),
@@ -41,6 +47,16 @@ class SparseLemkeBasis final : public LemkeBasis {
     pos_.reserve(static_cast<std::size_t>(max_updates_));
     rhs_index_.reserve(static_cast<std::size_t>(max_updates_) + 1);
     rhs_value_.reserve(static_cast<std::size_t>(max_updates_) + 1);
+    w_index_.resize(static_cast<std::size_t>(max_updates_));
+    w_value_.resize(static_cast<std::size_t>(max_updates_));
+    for (int j = 0; j < max_updates_; ++j) {
+      w_index_[static_cast<std::size_t>(j)].reserve(static_cast<std::size_t>(columns.n));
+      w_value_[static_cast<std::size_t>(j)].reserve(static_cast<std::size_t>(columns.n));
+    }
+    col_index_.resize(static_cast<std::size_t>(columns.n));
+    col_value_.resize(static_cast<std::size_t>(columns.n));
+    x_index_.reserve(static_cast<std::size_t>(columns.n));
+    x_value_.reserve(static_cast<std::size_t>(columns.n));
     B0_.data().resize(columns.M->nonZeros() + 2 * columns.n);
   }
 
@@ -49,6 +65,7 @@ class SparseLemkeBasis final : public LemkeBasis {
     for (Index p : pos_) slot_[p] = -1;
     pos_.clear();
     rows_.invalidate();
+    columns_.invalidate();
     identity_ = true;
     for (Index k = 0; k < n && identity_; ++k) identity_ = basic[k] == k;
     if (identity_) return true;
@@ -66,12 +83,37 @@ class SparseLemkeBasis final : public LemkeBasis {
     B0_.data().resize(p);
     if (!klu_.analyze(B0_).ok() || !klu_.factorize(B0_).ok()) return false;
     rows_.reserve(klu_);  // storage for rows_ (built at the first tie) allocated with KLU's
+    columns_.reserve(klu_);  // and for columns_ (built at the next solve_column)
     return true;
   }
 
+  // B₀⁻¹c by a hypersparse solve from c's nonzeros (sparse/hypersparse_column_solve.hpp):
+  // work in proportion to the factors' entries reached, not to nnz(L + U), while the
+  // solved columns are expected sparse; a dense solve when they are not (the depth-first
+  // search then costs as much as the solve: measured on piles, whose contacts form one
+  // connected network) or when the factors cannot be extracted. The expectation is a
+  // running mean of the solved columns' densities with the switch at 10%, as simplex codes
+  // switch between hypersparse and dense solves (Hall & McKinnon 2005, "Hyper-sparsity in
+  // the revised simplex method and how to exploit it", Comput. Optim. Appl. 32).
   void solve_column(Index var, Vector& a) override {
-    cols_.dense(var, pending_);
-    b0_solve(pending_);
+    const bool hyper = !identity_ && sparse_columns_ && column_density_ < kHypersparseDensity &&
+                       (columns_.built() || columns_.build(klu_));
+    if (!hyper) {
+      cols_.dense(var, pending_);
+      b0_solve(pending_);
+      if (!identity_ && sparse_columns_) {
+        Index nonzeros = 0;
+        for (Index i = 0; i < cols_.n; ++i) nonzeros += pending_(i) != 0.0;
+        column_density_ = 0.9 * column_density_ + 0.1 * static_cast<double>(nonzeros) / static_cast<double>(cols_.n);
+      }
+    } else {
+      const Index c = cols_.write_column(var, col_index_.data(), col_value_.data());
+      columns_.solve(static_cast<int>(c), col_index_.data(), col_value_.data(), x_index_, x_value_);
+      pending_.setZero();
+      for (std::size_t k = 0; k < x_index_.size(); ++k) pending_(x_index_[k]) = x_value_[k];
+      column_density_ =
+          0.9 * column_density_ + 0.1 * static_cast<double>(x_index_.size()) / static_cast<double>(cols_.n);
+    }
     a = pending_;
     correct(a);
   }
@@ -149,6 +191,13 @@ class SparseLemkeBasis final : public LemkeBasis {
       slot_[r] = static_cast<int>(j);
     }
     W_.col(j) = pending_;
+    // W's column j by its nonzeros too (correct() walks them; capacity n reserved).
+    std::vector<int>& wi = w_index_[static_cast<std::size_t>(j)];
+    std::vector<double>& wv = w_value_[static_cast<std::size_t>(j)];
+    wi.clear();
+    wv.clear();
+    for (Index i = 0; i < cols_.n; ++i)
+      if (pending_(i) != 0.0) wi.push_back(static_cast<int>(i)), wv.push_back(pending_(i));
     const Index k = static_cast<Index>(pos_.size());
     S_.resize(k, k);
     for (Index a = 0; a < k; ++a) S_.row(a) = W_.row(pos_[a]).head(k);
@@ -158,7 +207,10 @@ class SparseLemkeBasis final : public LemkeBasis {
 
   long memory_bytes() const override {
     const long factor = identity_ ? 0 : klu_.factor_nnz();
-    return static_cast<long>(sizeof(double)) * (factor + W_.size()) + static_cast<long>(sizeof(int)) * factor;
+    long w_nonzeros = 0;
+    for (const std::vector<int>& wi : w_index_) w_nonzeros += static_cast<long>(wi.capacity());
+    return static_cast<long>(sizeof(double)) * (factor + W_.size() + w_nonzeros) +
+           static_cast<long>(sizeof(int)) * (factor + w_nonzeros);
   }
 
  private:
@@ -188,17 +240,28 @@ class SparseLemkeBasis final : public LemkeBasis {
     SchurVector yp(k);
     for (Index j = 0; j < k; ++j) yp(j) = y(pos_[j]);
     const SchurVector t = s_lu_.solve(yp);
-    y.noalias() -= W_.leftCols(k) * t;
+    for (Index j = 0; j < k; ++j) {  // y −= W t over W's nonzeros (W is sparse when B₀⁻¹C is)
+      const double tj = t(j);
+      if (tj == 0.0) continue;
+      const std::vector<int>& wi = w_index_[static_cast<std::size_t>(j)];
+      const std::vector<double>& wv = w_value_[static_cast<std::size_t>(j)];
+      for (std::size_t e = 0; e < wi.size(); ++e) y(wi[e]) -= wv[e] * tj;
+    }
     for (Index j = 0; j < k; ++j) y(pos_[j]) += t(j);
   }
 
   LemkeColumns cols_;
+  bool sparse_columns_;     // LemkeSettings::sparse_columns
+  static constexpr double kHypersparseDensity = 0.1;  // solve_column's switch
+  double column_density_ = 0.0;  // running mean of nnz(B₀⁻¹c)/n over the solved columns
   int max_updates_;
   sparse::KluLu klu_;
   bool identity_ = false;   // B₀ = I: klu_ is not used
   std::vector<Index> pos_;  // replaced positions P
   std::vector<int> slot_;   // slot of a position in P, or −1
   DenseMatrix W_;           // B₀⁻¹ C, column j for position pos_[j]
+  std::vector<std::vector<int>> w_index_;     // W's column j by its nonzeros: rows
+  std::vector<std::vector<double>> w_value_;  // and values
   SchurMatrix S_;           // S = E_Pᵀ W
   Eigen::PartialPivLU<SchurMatrix> s_lu_;
   SparseMatrix B0_;         // B₀ (CSC), input of KLU
@@ -206,12 +269,16 @@ class SparseLemkeBasis final : public LemkeBasis {
   sparse::HypersparseTransposedSolver rows_;   // rows of B₀⁻¹ (built on first use)
   std::vector<int> rhs_index_;                 // right-hand side of a row of B⁻¹
   std::vector<double> rhs_value_;
+  sparse::HypersparseColumnSolver columns_;    // B₀⁻¹ times a column (built on first use)
+  std::vector<int> col_index_, x_index_;       // a tableau column's nonzeros; the solve's
+  std::vector<double> col_value_, x_value_;
 };
 
 }  // namespace
 
-std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval) {
-  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval);
+std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
+                                                    bool sparse_columns) {
+  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns);
 }
 
 }  // namespace lcprelax::detail

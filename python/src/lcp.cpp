@@ -27,6 +27,7 @@ const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
       double_field("residual_tolerance", &S::residual_tolerance),
       int_field("refactor_interval", &S::refactor_interval),
       bool_field("sparse_tie_rows", &S::sparse_tie_rows),
+      bool_field("sparse_columns", &S::sparse_columns),
       int_field("covering_retries", &S::covering_retries),
       int_field("regularization_retries", &S::regularization_retries),
       double_field("regularization", &S::regularization),

@@ -50,9 +50,7 @@ void HypersparseTransposedSolver::reserve(const KluLu& klu) {
   U_.val.reserve(static_cast<std::size_t>(unz));
   F_.col.reserve(static_cast<std::size_t>(fnz));
   F_.val.reserve(static_cast<std::size_t>(fnz));
-  x_.reserve(two_n);
-  mark_.reserve(two_n);
-  for (auto* v : {&reach_, &stack_, &edge_}) v->reserve(two_n);
+  work_.reserve(two_n);
 }
 
 bool HypersparseTransposedSolver::build(const KluLu& klu) {
@@ -69,59 +67,29 @@ bool HypersparseTransposedSolver::build(const KluLu& klu) {
   rs_.assign(f.Rs.begin(), f.Rs.begin() + n);
   qinv_.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) qinv_[static_cast<std::size_t>(f.Q[static_cast<std::size_t>(k)])] = k;
-  const std::size_t two_n = 2 * static_cast<std::size_t>(n);
-  x_.assign(two_n, 0.0);
-  mark_.assign(two_n, 0);
-  reach_.resize(two_n);
-  stack_.resize(two_n);
-  edge_.resize(two_n);
+  work_.reset(2 * static_cast<std::size_t>(n));
   built_ = true;
   return true;
 }
 
-// Depth-first search from `root` (unmarked) without recursion; finished nodes go to
-// reach_[--top]. Node j < n is v_j, with edges to the v nodes of row j of U and then to u_j
-// (edge number nnz(U row j)); node n + p is u_p, with edges to the u nodes of row p of L
-// and then to the v nodes of row p of F.
-int HypersparseTransposedSolver::dfs(int root, int top) {
-  int head = 0;
-  stack_[0] = root;
-  mark_[static_cast<std::size_t>(root)] = 1;
-  edge_[static_cast<std::size_t>(root)] = 0;
-  while (head >= 0) {
-    const int j = stack_[static_cast<std::size_t>(head)];
-    int& e = edge_[static_cast<std::size_t>(j)];
-    int child = -1;
-    if (j < n_) {
-      const int b = U_.start[static_cast<std::size_t>(j)], nu = U_.start[static_cast<std::size_t>(j) + 1] - b;
-      while (child < 0 && e < nu) {
-        const int c = U_.col[static_cast<std::size_t>(b + e++)];
-        if (!mark_[static_cast<std::size_t>(c)]) child = c;
-      }
-      if (child < 0 && e == nu) {
-        ++e;
-        if (!mark_[static_cast<std::size_t>(n_ + j)]) child = n_ + j;
-      }
-    } else {
-      const std::size_t p = static_cast<std::size_t>(j - n_);
-      const int lb = L_.start[p], nl = L_.start[p + 1] - lb;
-      const int fb = F_.start[p], nf = F_.start[p + 1] - fb;
-      while (child < 0 && e < nl + nf) {
-        const int k = e++;
-        const int c = k < nl ? n_ + L_.col[static_cast<std::size_t>(lb + k)] : F_.col[static_cast<std::size_t>(fb + k - nl)];
-        if (!mark_[static_cast<std::size_t>(c)]) child = c;
-      }
+// Edges of the reach graph: node j < n is v_j, with edges to the v nodes of row j of U
+// and then to u_j (edge number nnz(U row j)); node n + p is u_p, with edges to the u nodes
+// of row p of L and then to the v nodes of row p of F.
+int HypersparseTransposedSolver::next_child(int j, int& e) const {
+  if (j < n_) {
+    const int b = U_.start[static_cast<std::size_t>(j)], nu = U_.start[static_cast<std::size_t>(j) + 1] - b;
+    if (e < nu) return U_.col[static_cast<std::size_t>(b + e++)];
+    if (e == nu) {
+      ++e;
+      return n_ + j;
     }
-    if (child >= 0) {
-      mark_[static_cast<std::size_t>(child)] = 1;
-      edge_[static_cast<std::size_t>(child)] = 0;
-      stack_[static_cast<std::size_t>(++head)] = child;
-    } else {
-      --head;
-      reach_[static_cast<std::size_t>(--top)] = j;
-    }
+    return -1;
   }
-  return top;
+  const std::size_t p = static_cast<std::size_t>(j - n_);
+  const int lb = L_.start[p], nl = L_.start[p + 1] - lb, fb = F_.start[p], nf = F_.start[p + 1] - fb;
+  if (e >= nl + nf) return -1;
+  const int k = e++;
+  return k < nl ? n_ + L_.col[static_cast<std::size_t>(lb + k)] : F_.col[static_cast<std::size_t>(fb + k - nl)];
 }
 
 void HypersparseTransposedSolver::solve(int nb, const int* b_index, const double* b_value, std::vector<int>& y_index,
@@ -132,36 +100,33 @@ void HypersparseTransposedSolver::solve(int nb, const int* b_index, const double
   int top = end;
   for (int k = 0; k < nb; ++k) {
     const int l = qinv_[static_cast<std::size_t>(b_index[k])];
-    if (!mark_[static_cast<std::size_t>(l)]) top = dfs(l, top);
+    if (!work_.mark[static_cast<std::size_t>(l)]) top = work_.dfs(l, top, [this](int j, int& e) { return next_child(j, e); });
   }
-  for (int k = 0; k < nb; ++k) x_[static_cast<std::size_t>(qinv_[static_cast<std::size_t>(b_index[k])])] += b_value[k];
+  std::vector<double>& x = work_.x;
+  for (int k = 0; k < nb; ++k) x[static_cast<std::size_t>(qinv_[static_cast<std::size_t>(b_index[k])])] += b_value[k];
   for (int t = top; t < end; ++t) {
-    const int j = reach_[static_cast<std::size_t>(t)];
+    const int j = work_.reach[static_cast<std::size_t>(t)];
     if (j < n_) {  // v_j: Uᵀv = b̃ − Fᵀu, column j of U scattered along row j
       const std::size_t p = static_cast<std::size_t>(j);
-      const double v = (x_[p] /= udiag_[p]);
+      const double v = (x[p] /= udiag_[p]);
       if (v == 0.0) continue;
       for (int k = U_.start[p]; k < U_.start[p + 1]; ++k)
-        x_[static_cast<std::size_t>(U_.col[static_cast<std::size_t>(k)])] -= U_.val[static_cast<std::size_t>(k)] * v;
-      x_[p + static_cast<std::size_t>(n_)] += v;
+        x[static_cast<std::size_t>(U_.col[static_cast<std::size_t>(k)])] -= U_.val[static_cast<std::size_t>(k)] * v;
+      x[p + static_cast<std::size_t>(n_)] += v;
     } else {  // u_p: Lᵀu = v, then the Fᵀu terms of later blocks
       const std::size_t p = static_cast<std::size_t>(j - n_);
-      const double u = x_[static_cast<std::size_t>(j)];
+      const double u = x[static_cast<std::size_t>(j)];
       const int row = p_[p];
       y_index.push_back(row);
       y_value.push_back(u / rs_[p]);
       if (u == 0.0) continue;
       for (int k = L_.start[p]; k < L_.start[p + 1]; ++k)
-        x_[static_cast<std::size_t>(n_ + L_.col[static_cast<std::size_t>(k)])] -= L_.val[static_cast<std::size_t>(k)] * u;
+        x[static_cast<std::size_t>(n_ + L_.col[static_cast<std::size_t>(k)])] -= L_.val[static_cast<std::size_t>(k)] * u;
       for (int k = F_.start[p]; k < F_.start[p + 1]; ++k)
-        x_[static_cast<std::size_t>(F_.col[static_cast<std::size_t>(k)])] -= F_.val[static_cast<std::size_t>(k)] * u;
+        x[static_cast<std::size_t>(F_.col[static_cast<std::size_t>(k)])] -= F_.val[static_cast<std::size_t>(k)] * u;
     }
   }
-  for (int t = top; t < end; ++t) {
-    const std::size_t j = static_cast<std::size_t>(reach_[static_cast<std::size_t>(t)]);
-    x_[j] = 0.0;
-    mark_[j] = 0;
-  }
+  work_.clear(top, end);
   last_reach_ = end - top;
 }
 

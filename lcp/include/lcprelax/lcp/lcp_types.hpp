@@ -75,6 +75,11 @@ struct LemkeSettings {
   /// is nonzero visited) or as full rows (false: the reference, one dense transposed solve
   /// per tied row). Same decisions up to the roundoff of the solves (lcp/src/lemke_lexicographic.hpp).
   bool sparse_tie_rows = true;
+  /// Entering columns B⁻¹a of the sparse method solved from a's nonzeros (true: hypersparse
+  /// solves with the factors of B₀, only the factors' entries that the solution reaches
+  /// visited, sparse/hypersparse_column_solve.hpp) or by a dense triangular solve (false: the
+  /// reference). Same pivots up to the roundoff of the solves.
+  bool sparse_columns = true;
   /// Retries after a ray termination or numerical failure (not after the pivot limit):
   /// first `covering_retries` solves with perturbed covering vectors (d_i·(1 + (i mod 7)/7),
   /// then d_i·(1 + 10⁻³i), alternating), then `regularization_retries` solves on M + εI with

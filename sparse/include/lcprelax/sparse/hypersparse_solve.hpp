@@ -25,6 +25,7 @@
 // Conventions: no tolerance (exact zeros of the factors are skipped at build; the result
 // may hold numerically zero entries, all reached positions are reported). Rounding differs
 // from klu_tsolve only in the order of the sums.
+#include <lcprelax/sparse/detail/reach_work.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
 #include <vector>
@@ -60,7 +61,7 @@ class HypersparseTransposedSolver {
   };
   void transpose_strict(const std::vector<int>& p, const std::vector<int>& i, const std::vector<double>& x,
                         RowWise& out, std::vector<double>* diag);
-  int dfs(int root, int top);
+  int next_child(int j, int& e) const;
 
   int n_ = 0;
   bool built_ = false;
@@ -69,11 +70,7 @@ class HypersparseTransposedSolver {
   RowWise U_, L_, F_;
   std::vector<double> udiag_, rs_;
   std::vector<int> p_, qinv_;
-  // Work (size 2n): values, marks, the reach (filled from the top down), DFS stack and
-  // the position in each stacked node's edge list.
-  std::vector<double> x_;
-  std::vector<char> mark_;
-  std::vector<int> reach_, stack_, edge_;
+  detail::ReachWork work_;  // size 2n
   int last_reach_ = 0;
 };
 
