@@ -279,13 +279,20 @@ PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const I
     // The candidate as it is, and (QpSettings::polish_forcing_rows) the same point with the
     // forcing rows' multipliers shrunk; the better of them counts. The active set's
     // corrections come from the first, so the rounds are those without the step.
+    // (QpSettings::polish_least_norm) A third: the best of those with least-norm multipliers.
     bool solved = false;
+    double round_merit = std::numeric_limits<double>::infinity();
+    QpResult round_best;
     for (int variant = 0; variant < (s.polish_forcing_rows ? 2 : 1) && !solved; ++variant) {
       ActiveSet scratch = a;
       const double wrong = build_candidate(f, p, a, sp, thr_p, thr_d, variant == 1, cand, variant == 0 ? next : scratch, w);
       if (wrong > thr_d) continue;
       const Residuals r = compute_residuals(p, cand, w);
       const double m = merit_of(r, s);
+      if (m < round_merit) {
+        round_merit = m;
+        round_best = cand;
+      }
       if (m < best_merit) {
         best_merit = m;
         out.found = true;
@@ -294,6 +301,24 @@ PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const I
         candidate.y = cand.y;
         candidate.z = cand.z;
         candidate.z_bounds = cand.z_bounds;
+      }
+      solved = within(r, s, 1.0);
+    }
+    if (!solved && s.polish_least_norm && std::isfinite(round_merit) &&
+        least_norm_multipliers(f, p, a.rows, a.bounds, thr_d, round_best)) {
+      const Residuals r = compute_residuals(p, round_best, w);
+      const double m = merit_of(r, s);
+      if (s.verbose)
+        std::fprintf(stderr, "polish: least-norm multipliers  dres %.2e gap %.2e (merit %.3g -> %.3g)\n", r.dual, r.gap,
+                     round_merit, m);
+      if (m < best_merit) {
+        best_merit = m;
+        out.found = true;
+        out.residuals = r;
+        candidate.x = round_best.x;
+        candidate.y = round_best.y;
+        candidate.z = round_best.z;
+        candidate.z_bounds = round_best.z_bounds;
       }
       solved = within(r, s, 1.0);
     }

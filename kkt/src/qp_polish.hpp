@@ -37,6 +37,11 @@
 //    of forcing constraints); its bound multipliers with a wrong sign below kSignFloorUlps
 //    ulps of their stationarity row count as 0. Of the two candidates the better counts;
 //    the corrections of step 4 come from the first.
+// 3c. Least-norm multipliers (QpSettings::polish_least_norm): a third candidate, the
+//    multipliers of the better of 3 and 3b replaced by the element of smallest 2-norm of
+//    {w : Px + q + Aᵀy + Gᵀz + z_b = 0 on the active sides, signs kept}
+//    (qp_polish_least_norm.cpp); where the interior point's multipliers are unbounded, the
+//    roundoff of the gap's and the dual residual's terms falls with them.
 // 4. Corrections (at most kPolishRounds reduced solves): a side whose multiplier has the
 //    wrong sign by more than 1e-2·tol_d leaves the active set, an inactive row or bound
 //    violated by more than 1e-2·tol_p enters it at the violated side, and the system is
@@ -70,6 +75,14 @@ constexpr int kForcingRowPasses = 10;
 /// W = s/z = μ/z² on active sides (1e-14 at z = 1) and s²/μ on inactive ones (1e14 at
 /// s = 1); a weakly active side (z = s = √μ) gets W = 1, between the two.
 constexpr double kPolishMu = 1e-14;
+/// Least-norm multipliers (step 3c): regularization δ/max|M|² of the quasi-definite system,
+/// refinement steps per solve and active-set rounds (pinned sign components).
+constexpr double kLeastNormDelta = 1e-12;
+constexpr int kLeastNormRefinement = 30;
+constexpr int kLeastNormRounds = 8;
+/// A least-norm solve counts when its stationarity error ‖Px + q + Mw‖∞ is at most this
+/// many times that of the multipliers it replaces (or the polish's sign threshold).
+constexpr double kLeastNormStationarity = 10.0;
 
 struct PolishOutcome {
   int rounds = 0;          ///< reduced systems factorized
@@ -96,6 +109,15 @@ struct PolishOutcome {
 /// return; cand.y, cand.z are updated. Returns the number of shifts. Allocates.
 int shrink_forcing_row_multipliers(const StandardForm& f, const QpProblem& p, const std::vector<signed char>& rows,
                                    const std::vector<signed char>& bounds, QpResult& cand, Vector& target);
+
+/// Step 3c: replaces cand's multipliers (y, z, z_bounds) on the active set (`rows`, `bounds`
+/// as above; equality rows and fixed variables always active, free sign) by the sign-keeping
+/// ones of least 2-norm (method in qp_polish_least_norm.cpp), given cand.x. A solve counts
+/// when its stationarity error is at most max(tol_d, kLeastNormStationarity × that of cand's
+/// multipliers). Returns false, leaving
+/// cand untouched, when no solve succeeds or the largest multiplier does not shrink. Allocates.
+bool least_norm_multipliers(const StandardForm& f, const QpProblem& p, const std::vector<signed char>& rows,
+                            const std::vector<signed char>& bounds, double tol_d, QpResult& cand);
 
 PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, const QpSettings& s,
                               const Residuals& before, QpResult& candidate, Workspace& w);

@@ -36,6 +36,7 @@ const std::vector<SettingField<QpSettings>>& qp_fields() {
       double_field("primal_reg_drop", &S::primal_reg_drop), bool_field("exact_bound_steps", &S::exact_bound_steps),
       bool_field("clean_bound_multipliers", &S::clean_bound_multipliers), bool_field("polish", &S::polish),
       bool_field("polish_forcing_rows", &S::polish_forcing_rows),
+      bool_field("polish_least_norm", &S::polish_least_norm),
       int_field("centrality_correctors", &S::centrality_correctors),
       double_field("multiplier_restart_growth", &S::multiplier_restart_growth),
       int_field("ruiz_iterations", &S::ruiz_iterations), double_field("step_fraction", &S::step_fraction),

@@ -145,6 +145,11 @@ struct QpSettings {
   /// multiplier of smallest magnitude that keeps every sign (their multiplier is not unique
   /// and the interior point's grows along the central path; kkt/src/qp_polish_forcing_rows.cpp).
   bool polish_forcing_rows = true;
+  /// Polishing: also try the multipliers of least 2-norm on the polished active set (signs
+  /// kept; an active-set least-distance solve, kkt/src/qp_polish_least_norm.cpp). Where the
+  /// set of optimal multipliers is unbounded the interior point's grow along the central
+  /// path, and the roundoff of the gap's and dual residual's terms grows with them.
+  bool polish_least_norm = true;
   /// Gondzio's multiple centrality correctors per iteration (at most; 0 = none) of the
   /// conservative second run, the one that follows a stalled first run (qp_solver.hpp).
   /// Each costs one more solve with the iteration's factor and is kept only if it
