@@ -17,13 +17,18 @@
 // (~n³ in size), not a property of the multipliers.
 //
 // Random cyclic family (make_cycles, CyclicFamilyTable; 20 seeds per cell), solved without /
-// with the step: scale 1: 20/20 for every spread; scale 1e2: spread 0: 8 / 12, spread 2:
-// 0 / 3, spread 4: 0 / 1; in all 68 → 76 of 120. The rest end solved_inaccurate with the gap
-// 1e-9…6e-8 and the dual residual 1e-11…8e-10: the gap ≈ xᵀ(Px + q + Gᵀz + z_b) there, the
-// stationarity error weighted by |x| ~ 1e3, not the multipliers' size (|z| 2e2…2e3).
+// with the step: scale 1: 20/20 for every spread; scale 1e2: spread 0: 8 / 20, spread 2:
+// 0 / 19, spread 4: 0 / 18; in all 68 → 117 of 120. Without the step these end
+// solved_inaccurate with the gap at 1e-9…6e-8: the gap ≈ xᵀ(Px + q + Gᵀz + z_b), and the
+// polished point's stationarity error (1e-11…8e-10, weighted by |x| ~ 1e3) is the floor of
+// its reduced system's refinement set by the interior point's multipliers; re-solving the
+// reduced system from the least-norm point brings it to ~1e-14 (one pass of step 3c alone,
+// the least-norm multipliers without that re-solve, measured 76 of 120).
 // (At scale 1e4 neither solves one: the gap's terms reach 1e8, its evaluation floor 1e-8.)
 #include <lcprelax/kkt/qp_gradient.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
+
+#include "qp_recomputed_residuals.hpp"
 
 #include <gtest/gtest.h>
 
@@ -38,35 +43,8 @@
 namespace lcprelax {
 namespace {
 
-struct Recomputed {
-  double primal = 0, dual = 0, gap = 0;
-  double gap_floor = 0;  ///< 64·u·Σ|terms| of the gap: its evaluation error may reach this
-};
-
-double dist(double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); }
-double support(double z, double lo, double hi) { return z > 0 ? hi * z : (z < 0 ? lo * z : 0.0); }
-
-// qpbenchmark's residuals (no equality rows here).
-Recomputed recompute(const QpProblem& p, const QpResult& r) {
-  Recomputed c;
-  const Vector Px = p.P.selfadjointView<Eigen::Upper>() * r.x, Gx = p.G * r.x;
-  for (Index i = 0; i < Gx.size(); ++i) c.primal = std::max(c.primal, dist(Gx(i), p.l(i), p.u(i)));
-  for (Index j = 0; j < r.x.size(); ++j) c.primal = std::max(c.primal, dist(r.x(j), p.xl(j), p.xu(j)));
-  c.dual = (Px + p.q + p.G.transpose() * r.z + r.z_bounds).lpNorm<Eigen::Infinity>();
-  double gap = r.x.dot(Px) + p.q.dot(r.x);
-  double terms = std::fabs(r.x.dot(Px)) + std::fabs(p.q.dot(r.x));
-  for (Index i = 0; i < r.z.size(); ++i) {
-    gap += support(r.z(i), p.l(i), p.u(i));
-    terms += std::fabs(support(r.z(i), p.l(i), p.u(i)));
-  }
-  for (Index j = 0; j < r.x.size(); ++j) {
-    gap += support(r.z_bounds(j), p.xl(j), p.xu(j));
-    terms += std::fabs(support(r.z_bounds(j), p.xl(j), p.xu(j)));
-  }
-  c.gap = std::fabs(gap);
-  c.gap_floor = 64.0 * std::numeric_limits<double>::epsilon() * terms;
-  return c;
-}
+using test_support::Recomputed;
+using test_support::recompute;
 
 QpProblem make_powell(Index n) {
   QpProblem p(n);
@@ -238,7 +216,9 @@ TEST(QpPolishLeastNorm, CyclicFamilyTable) {
         const QpProblem p = make_cycles(seed, scale, spread);
         for (int with = 0; with < 2; ++with) {
           const QpResult r = solve(p, with == 1);
-          if (r.info.status == QpStatus::solved) EXPECT_TRUE(solved_at(p, r, 1e-9)) << "seed " << seed;
+          if (r.info.status == QpStatus::solved) {
+            EXPECT_TRUE(solved_at(p, r, 1e-9)) << "seed " << seed;
+          }
           solved[with] += solved_at(p, r, 1e-9);
         }
       }
@@ -249,7 +229,7 @@ TEST(QpPolishLeastNorm, CyclicFamilyTable) {
       total[1] += solved[1];
     }
   std::printf("[ measured ] cycles: solved without %d, with %d of 120\n", total[0], total[1]);
-  EXPECT_GE(total[1], total[0] + 6);
+  EXPECT_GE(total[1], 110);
 }
 
 }  // namespace

@@ -116,10 +116,10 @@ void reduced_residual(const StandardForm& f, const ActiveSet& a, const Reduced& 
     if (s.pos[k] >= 0) res(nF + me + s.pos[k]) = static_cast<double>((a.rows[k] < 0 ? f.gl(k) : f.gu(k)) - prim_g[k]);
 }
 
-// Solves the reduced KKT system of qp_polish.hpp (step 2) from the interior iterate (it.x,
-// it.y, signed row multipliers zg_it). False when the factorization fails.
-bool solve_reduced(const StandardForm& f, const Iterate& it, const Vector& zg_it, const ActiveSet& a,
-                   ScaledPoint& out) {
+// Solves the reduced KKT system of qp_polish.hpp (step 2) from the scaled point `start`
+// (the interior iterate's x̃, ỹ and signed row multipliers, or a polished point's). False
+// when the factorization fails.
+bool solve_reduced(const StandardForm& f, const ScaledPoint& start, const ActiveSet& a, ScaledPoint& out) {
   const Index n = f.n, me = f.me, mg = f.mg;
   const Reduced s = reduce(f, a);
   const Index nF = s.nF, N = s.N;
@@ -146,10 +146,10 @@ bool solve_reduced(const StandardForm& f, const Iterate& it, const Vector& zg_it
   // Refinement from the interior iterate; keeps the iterate of smallest residual.
   Vector v(N);
   for (Index j = 0; j < n; ++j)
-    if (s.col[j] >= 0) v(s.col[j]) = it.x(j);
-  for (Index k = 0; k < me; ++k) v(nF + k) = it.y(k);
+    if (s.col[j] >= 0) v(s.col[j]) = start.x(j);
+  for (Index k = 0; k < me; ++k) v(nF + k) = start.y(k);
   for (Index k = 0; k < mg; ++k)
-    if (s.pos[k] >= 0) v(nF + me + s.pos[k]) = zg_it(k);
+    if (s.pos[k] >= 0) v(nF + me + s.pos[k]) = start.zg(k);
   std::vector<long double> acc;
   Vector res, d;
   reduced_residual(f, a, s, v, res, acc);
@@ -178,6 +178,22 @@ bool solve_reduced(const StandardForm& f, const Iterate& it, const Vector& zg_it
   for (Index k = 0; k < mg; ++k)
     if (s.pos[k] >= 0) out.zg(k) = best_v(nF + me + s.pos[k]);
   return true;
+}
+
+// The scaled point of an unscaled candidate (inverse of step 3's map): x̃ = x/Dx,
+// ỹ = c·y/Ee (c·z/Ee for a G row, c·z_b/Ee for a fixed variable), ζ = c·z/Eg.
+ScaledPoint scaled_point(const StandardForm& f, const QpResult& r) {
+  ScaledPoint sp;
+  sp.x = r.x.cwiseQuotient(f.Dx);
+  sp.y.resize(f.me);
+  for (Index k = 0; k < f.me; ++k) {
+    const Index i = f.eq_index[k];
+    const double w = f.eq_source[k] == EqSource::a_row ? r.y(i) : f.eq_source[k] == EqSource::g_row ? r.z(i) : r.z_bounds(i);
+    sp.y(k) = f.c * w / f.Ee(k);
+  }
+  sp.zg.resize(f.mg);
+  for (Index k = 0; k < f.mg; ++k) sp.zg(k) = f.c * r.z(f.g_index[k]) / f.Eg(k);
+  return sp;
 }
 
 // Step 3 and 4 of qp_polish.hpp: the unscaled candidate of `sp`, with wrong signs up to
@@ -259,6 +275,45 @@ double build_candidate(const StandardForm& f, const QpProblem& p, const ActiveSe
   return wrong;
 }
 
+// Step 3c of qp_polish.hpp on `best` (a candidate of active set a, signs kept): least-norm
+// multipliers, then the reduced system once more from that point. Its refinement's floor is
+// the roundoff of the iterate, which the interior point's large multipliers had set; sides
+// whose least-norm multiplier is 0 leave the active set there (the refinement would move
+// them along the multipliers' null space to either sign). Up to kLeastNormPasses passes
+// while the merit falls. False when the first least-norm solve fails (best untouched).
+bool least_norm_candidate(const StandardForm& f, const QpProblem& p, const ActiveSet& a, double thr_p, double thr_d,
+                          const QpSettings& s, QpResult& best, Workspace& w) {
+  double best_merit = std::numeric_limits<double>::infinity();
+  bool any = false;
+  for (int pass = 0; pass < kLeastNormPasses; ++pass) {
+    QpResult trial = best;
+    if (!least_norm_multipliers(f, p, a.rows, a.bounds, thr_d, trial)) break;
+    ActiveSet a0 = a;
+    for (Index k = 0; k < f.mg; ++k)
+      if (a0.rows[k] != 0 && trial.z(f.g_index[k]) == 0.0) a0.rows[k] = 0;
+    for (Index j = 0; j < f.n; ++j)
+      if (a0.bounds[j] != 0 && trial.z_bounds(j) == 0.0) a0.bounds[j] = 0;
+    double m = merit_of(compute_residuals(p, trial, w), s);
+    ScaledPoint again;
+    ActiveSet scratch = a0;
+    QpResult resolved;
+    if (solve_reduced(f, scaled_point(f, trial), a0, again) &&
+        build_candidate(f, p, a0, again, thr_p, thr_d, false, resolved, scratch, w) <= thr_d) {
+      const double m1 = merit_of(compute_residuals(p, resolved, w), s);
+      if (m1 < m) {
+        m = m1;
+        trial = std::move(resolved);
+      }
+    }
+    if (any && !(m < best_merit)) break;
+    best = std::move(trial);
+    best_merit = m;
+    any = true;
+    if (m <= 1.0) break;
+  }
+  return any;
+}
+
 }  // namespace
 
 PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const Iterate& it, const QpSettings& s,
@@ -267,13 +322,16 @@ PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const I
   const double thr_p = kPolishSignFraction * (s.eps_abs + s.eps_rel * before.scale_p);
   const double thr_d = kPolishSignFraction * (s.eps_abs + s.eps_rel * before.scale_d);
   ActiveSet a = guess_active_set(f, it);
-  Vector zg_it, zb_it;
-  it.signed_multipliers(f.mg, f.n, zg_it, zb_it);
+  ScaledPoint start;
+  start.x = it.x;
+  start.y = it.y;
+  Vector zb_it;
+  it.signed_multipliers(f.mg, f.n, start.zg, zb_it);
   QpResult cand;
   ScaledPoint sp;
   double best_merit = std::numeric_limits<double>::infinity();
   for (int round = 0; round < kPolishRounds; ++round) {
-    if (!solve_reduced(f, it, zg_it, a, sp)) break;
+    if (!solve_reduced(f, start, a, sp)) break;
     ++out.rounds;
     ActiveSet next = a;
     // The candidate as it is, and (QpSettings::polish_forcing_rows) the same point with the
@@ -283,6 +341,19 @@ PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const I
     bool solved = false;
     double round_merit = std::numeric_limits<double>::infinity();
     QpResult round_best;
+    // Keeps c as the polish's answer when it is the best so far; whether it is solved.
+    const auto offer = [&](const QpResult& c, const Residuals& r, double m) {
+      if (m < best_merit) {
+        best_merit = m;
+        out.found = true;
+        out.residuals = r;
+        candidate.x = c.x;
+        candidate.y = c.y;
+        candidate.z = c.z;
+        candidate.z_bounds = c.z_bounds;
+      }
+      return within(r, s, 1.0);
+    };
     for (int variant = 0; variant < (s.polish_forcing_rows ? 2 : 1) && !solved; ++variant) {
       ActiveSet scratch = a;
       const double wrong = build_candidate(f, p, a, sp, thr_p, thr_d, variant == 1, cand, variant == 0 ? next : scratch, w);
@@ -293,34 +364,16 @@ PolishOutcome polish_solution(const StandardForm& f, const QpProblem& p, const I
         round_merit = m;
         round_best = cand;
       }
-      if (m < best_merit) {
-        best_merit = m;
-        out.found = true;
-        out.residuals = r;
-        candidate.x = cand.x;
-        candidate.y = cand.y;
-        candidate.z = cand.z;
-        candidate.z_bounds = cand.z_bounds;
-      }
-      solved = within(r, s, 1.0);
+      solved = offer(cand, r, m);
     }
     if (!solved && s.polish_least_norm && std::isfinite(round_merit) &&
-        least_norm_multipliers(f, p, a.rows, a.bounds, thr_d, round_best)) {
+        least_norm_candidate(f, p, a, thr_p, thr_d, s, round_best, w)) {
       const Residuals r = compute_residuals(p, round_best, w);
       const double m = merit_of(r, s);
       if (s.verbose)
         std::fprintf(stderr, "polish: least-norm multipliers  dres %.2e gap %.2e (merit %.3g -> %.3g)\n", r.dual, r.gap,
                      round_merit, m);
-      if (m < best_merit) {
-        best_merit = m;
-        out.found = true;
-        out.residuals = r;
-        candidate.x = round_best.x;
-        candidate.y = round_best.y;
-        candidate.z = round_best.z;
-        candidate.z_bounds = round_best.z_bounds;
-      }
-      solved = within(r, s, 1.0);
+      solved = offer(round_best, r, m);
     }
     if (solved) break;
     if (next == a) break;

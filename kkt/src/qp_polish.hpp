@@ -41,7 +41,10 @@
 //    multipliers of the better of 3 and 3b replaced by the element of smallest 2-norm of
 //    {w : Px + q + Aᵀy + Gᵀz + z_b = 0 on the active sides, signs kept}
 //    (qp_polish_least_norm.cpp); where the interior point's multipliers are unbounded, the
-//    roundoff of the gap's and the dual residual's terms falls with them.
+//    roundoff of the gap's and the dual residual's terms falls with them. The reduced
+//    system of step 2 is then solved once more from that point (its refinement's floor was
+//    set by the large multipliers), the sides with a zero least-norm multiplier left out;
+//    up to kLeastNormPasses passes while the candidate improves.
 // 4. Corrections (at most kPolishRounds reduced solves): a side whose multiplier has the
 //    wrong sign by more than 1e-2·tol_d leaves the active set, an inactive row or bound
 //    violated by more than 1e-2·tol_p enters it at the violated side, and the system is
@@ -83,6 +86,8 @@ constexpr int kLeastNormRounds = 8;
 /// A least-norm solve counts when its stationarity error ‖Px + q + Mw‖∞ is at most this
 /// many times that of the multipliers it replaces (or the polish's sign threshold).
 constexpr double kLeastNormStationarity = 10.0;
+/// Passes of step 3c (least-norm multipliers, then the reduced system again from them).
+constexpr int kLeastNormPasses = 3;
 
 struct PolishOutcome {
   int rounds = 0;          ///< reduced systems factorized
