@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> methods = {"relaxed", "hard"};
   int seeds = 5, test_size = 2000, epochs = 200, threads = 1;
   double noise = 0.02, true_mu = 0.1, init_mu = 0.3;
-  std::string csv_path = "bench/results/learning_curves.csv", plot;
+  std::string csv_path, plot;
   app.add_option("--sizes", sizes, "training set sizes")->delimiter(',');
   app.add_option("--params", params, "parameterizations")->delimiter(',');
   app.add_option("--methods", methods, "training losses (relaxed, hard)")->delimiter(',');
@@ -135,12 +135,21 @@ int main(int argc, char** argv) {
   app.add_option("--noise", noise, "relative noise on the training v_next");
   app.add_option("--true-mu", true_mu, "true friction coefficient");
   app.add_option("--init-mu", init_mu, "initial friction coefficient");
-  app.add_option("--csv", csv_path, "CSV of every run");
+  app.add_option("--csv", csv_path, "CSV of every run (none without this option)");
   app.add_option("--plot", plot, "plot of the median test error (.png/.svg)");
   CLI11_PARSE(app, argc, argv);
 
   const Block1d truth{1.0, 1.0, true_mu};
-  std::ofstream csv(csv_path);
+  // Only where asked: a run with other options must not overwrite a file of bench/results
+  // (bench/regenerate.sh names every output).
+  std::ofstream csv;
+  if (!csv_path.empty()) {
+    csv.open(csv_path);
+    if (!csv) {
+      std::fprintf(stderr, "cannot write %s\n", csv_path.c_str());
+      return 2;
+    }
+  }
   csv << "param,method,samples,seed,epochs,converged,train_loss,test_error,mode_error,failed,train_failed,stick_speed,seconds\n";
   std::printf("Learning curves, 1-D block (true mu %g, initial mu %g, noise %g relative, %d held-out, L-BFGS <= %d "
               "iterations)\n",

@@ -296,7 +296,7 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
 int main(int argc, char** argv) {
   CLI::App app("learning curves of the scene path's parameterizations: polygon, 30-body pile (issue 20)");
   std::string scene = "polygon", params_list = "physical,structured,residual", sizes_list = "10,30,100,300,1000";
-  std::string csv_path = "bench/results/learning_curves_scene.csv", plot, optimizer = "adam", loss_name = "relaxed";
+  std::string csv_path, plot, optimizer = "adam", loss_name = "relaxed";
   double lr = 0.02;
   int polish = 100;
   int seeds = 5, test_size = 400, epochs = 300, sanity_size = 30;
@@ -326,7 +326,7 @@ int main(int argc, char** argv) {
   app.add_option("--true-erp", soft.erp, "erp of the data's truth, in [0, 1]");
   app.add_option("--stick-tol", stick_tol, "tangential speed (m/s) below which a contact sticks");
   app.add_option("--sanity-size", sanity_size, "training transitions of the sanity run from the truth (0: skip)");
-  app.add_option("--csv", csv_path, "CSV of every run");
+  app.add_option("--csv", csv_path, "CSV of every run (none without this option)");
   app.add_option("--plot", plot, "plot of the median test error (.png/.svg); also _mode");
   CLI11_PARSE(app, argc, argv);
   const std::vector<std::string> params = bench::split_list(params_list);
@@ -371,7 +371,16 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::ofstream csv(csv_path);
+  // Only where asked: a run with other options must not overwrite a file of bench/results
+  // (bench/regenerate.sh names every output).
+  std::ofstream csv;
+  if (!csv_path.empty()) {
+    csv.open(csv_path);
+    if (!csv) {
+      std::fprintf(stderr, "cannot write %s\n", csv_path.c_str());
+      return 2;
+    }
+  }
   csv << "scene,param,method,samples,seed,epochs,converged,train_loss,test_error,mode_error,contacts,failed,"
          "train_failed,seconds\n";
   std::printf("%-12s %7s %12s %12s %12s %8s %8s %9s\n", "param", "N", "median_err", "max_err", "mode_err", "failed",
