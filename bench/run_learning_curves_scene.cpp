@@ -42,6 +42,14 @@
 // 0.05 m, polygon_objective.hpp), full batch, 1 thread: by default Adam as the CLIs (lr 0.02,
 // decay 0.003, at most --epochs epochs, the trainer's convergence test); lbfgs: L-BFGS (lr
 // 1); adam+lbfgs: Adam, then at most --polish L-BFGS iterations.
+// --batch B (Adam only): at sizes N > B, mini-batches of B and round(--epochs·B/N) epochs, so
+// that every size takes about the same number of optimizer steps (--epochs; exactly where B
+// divides N) on the same number of samples per step as a full-batch run at N = B (at N ≤ B:
+// full batch, as without it); the decay schedule counts steps, so it is the same too. With
+// mini-batches every epoch runs (the trainer's convergence test, TrainSettings::patience,
+// would cost a pass over the whole training set per epoch; the full-batch pile runs all ran
+// to their cap). --threads T: the batch's evaluations on T threads (sums in a fixed order:
+// the same numbers as on 1 thread).
 // Reported per run: test_error = sqrt(Σ‖v̂⁺ − v⁺‖² / Σ‖v⁺‖²) over the held-out transitions'
 // dynamic bodies (v = (vx, vy, ω), SI), v⁺ the recorded next velocity, v̂⁺ that of one
 // Simulator::step (the data's settings, LCP model, no warm start) of the world at the
@@ -248,6 +256,13 @@ RunResult evaluate_test(const Problem& test, const SceneParameterMap& map, const
   return r;
 }
 
+// --batch and --threads (header comment).
+struct Protocol {
+  int batch = 0;
+  int threads = 1;
+};
+Protocol g_protocol;
+
 RunResult run(const Problem& train_data, const Problem& test, const std::string& param, ParameterSet* start_override,
               double perturb, std::uint64_t seed, int epochs, double stick_tol, const std::string& optimizer, double lr,
               int polish, LossMethod loss, ParameterSet* theta_out = nullptr) {
@@ -259,8 +274,14 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
   ls.method = loss;
   SceneObjective objective(train_data.data, map, ls);
   TrainSettings t;
+  const Index n = static_cast<Index>(train_data.data.transitions.size());
   t.epochs = epochs;
-  t.threads = 1;
+  t.threads = g_protocol.threads;
+  if (g_protocol.batch > 0 && n > g_protocol.batch && optimizer == "adam") {
+    t.batch = g_protocol.batch;
+    t.epochs = std::max(1, static_cast<int>(std::lround(static_cast<double>(epochs) * g_protocol.batch / n)));
+    t.patience = 0;  // every epoch (no convergence test: with mini-batches it costs a full pass per epoch)
+  }
   if (optimizer == "lbfgs") {
     t.optimizer.kind = OptimizerKind::lbfgs;
     t.optimizer.learning_rate = 1.0;
@@ -286,7 +307,7 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
   r.epochs = static_cast<int>(tr.history.size());
   r.converged = tr.converged;
   r.train_failed = tr.failed;
-  r.train_loss = evaluate_mean(objective, theta, all, 1).loss;
+  r.train_loss = evaluate_mean(objective, theta, all, g_protocol.threads).loss;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -328,7 +349,15 @@ int main(int argc, char** argv) {
   app.add_option("--sanity-size", sanity_size, "training transitions of the sanity run from the truth (0: skip)");
   app.add_option("--csv", csv_path, "CSV of every run (none without this option)");
   app.add_option("--plot", plot, "plot of the median test error (.png/.svg); also _mode");
+  app.add_option("--batch", g_protocol.batch,
+                 "Adam: mini-batches of this size above it, epochs scaled to the same number of steps (0: full batch)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", g_protocol.threads, "threads of the batch evaluations")->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
+  if (g_protocol.batch > 0 && optimizer != "adam") {
+    std::fprintf(stderr, "--batch needs --optimizer adam (L-BFGS is full batch)\n");
+    return 2;
+  }
   const std::vector<std::string> params = bench::split_list(params_list);
   std::vector<int> sizes;
   for (const std::string& s : bench::split_list(sizes_list)) sizes.push_back(std::stoi(s));
