@@ -372,6 +372,9 @@ int main(int argc, char** argv) {
               "v+, perturb %g, %d held-out transitions, stick: |Jt v+| <= %g m/s)\n",
               scene.c_str(), loss_name.c_str(), optimizer.c_str(), epochs, optimizer == "lbfgs" ? 1.0 : lr, optimizer == "adam+lbfgs" ? polish : 0, noise, perturb,
               test_size, stick_tol);
+  if (g_protocol.batch > 0)
+    std::printf("mini-batches of %d above N = %d, epochs scaled to round(%d*%d/N) (the same %d steps); %d threads\n",
+                g_protocol.batch, g_protocol.batch, epochs, g_protocol.batch, epochs, g_protocol.threads);
   std::map<int, Problem> tests;
   for (int s = 1; s <= seeds; ++s) tests[s] = make_problem(scene, test_size, 777777 + s, soft);
   {
