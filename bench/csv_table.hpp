@@ -1,8 +1,10 @@
 #pragma once
-// Reading the benchmark CSVs back (run_report_plots.cpp; header-only): a header line,
+// Reading the benchmark CSVs back (run_report_plots.cpp; header-only), and opening one for
+// writing only where asked (open_optional_csv): a header line,
 // comma-separated fields, "…" quoting without commas inside (as Google Benchmark's
 // --benchmark_out_format=csv writes names and labels). Rows are maps column → text.
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -21,6 +23,17 @@ inline std::vector<std::string> split_list(const std::string& s) {
   while (std::getline(in, item, ','))
     if (!item.empty()) out.push_back(item);
   return out;
+}
+
+/// Opens `path` for writing when it is not empty; false, with a message on stderr, when it
+/// cannot be written. Only where asked: a run with other options must not overwrite a file of
+/// bench/results (bench/regenerate.sh names every output).
+inline bool open_optional_csv(const std::string& path, std::ofstream& out) {
+  if (path.empty()) return true;
+  out.open(path);
+  if (out) return true;
+  std::fprintf(stderr, "cannot write %s\n", path.c_str());
+  return false;
 }
 
 /// The rows of `path` (empty when the file is missing or has no header). Lines before the

@@ -33,6 +33,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "csv_table.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -140,16 +142,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const Block1d truth{1.0, 1.0, true_mu};
-  // Only where asked: a run with other options must not overwrite a file of bench/results
-  // (bench/regenerate.sh names every output).
   std::ofstream csv;
-  if (!csv_path.empty()) {
-    csv.open(csv_path);
-    if (!csv) {
-      std::fprintf(stderr, "cannot write %s\n", csv_path.c_str());
-      return 2;
-    }
-  }
+  if (!bench::open_optional_csv(csv_path, csv)) return 2;
   csv << "param,method,samples,seed,epochs,converged,train_loss,test_error,mode_error,failed,train_failed,stick_speed,seconds\n";
   std::printf("Learning curves, 1-D block (true mu %g, initial mu %g, noise %g relative, %d held-out, L-BFGS <= %d "
               "iterations)\n",

@@ -403,16 +403,8 @@ int main(int argc, char** argv) {
     }
   }
 
-  // Only where asked: a run with other options must not overwrite a file of bench/results
-  // (bench/regenerate.sh names every output).
   std::ofstream csv;
-  if (!csv_path.empty()) {
-    csv.open(csv_path);
-    if (!csv) {
-      std::fprintf(stderr, "cannot write %s\n", csv_path.c_str());
-      return 2;
-    }
-  }
+  if (!bench::open_optional_csv(csv_path, csv)) return 2;
   csv << "scene,param,method,samples,seed,epochs,converged,train_loss,test_error,mode_error,contacts,failed,"
          "train_failed,seconds\n";
   std::printf("%-12s %7s %12s %12s %12s %8s %8s %9s\n", "param", "N", "median_err", "max_err", "mode_err", "failed",
