@@ -3,7 +3,7 @@
 // training transitions, per parameterization, 5 seeds each. The block's are
 // run_learning_curves.cpp.
 //
-//   run_learning_curves_scene --scene polygon|pile30 [--sizes 10,30,100,300,1000] [--seeds 5]
+//   run_learning_curves_scene --scene polygon|pile30 [--sizes 10,30,100,300,1000] [--seeds 5] [--first-seed 1]
 //     [--params physical,structured,residual,block,block_tied,softness] [--loss relaxed|hard]
 //     [--noise 0.02] [--true-compliance C --true-erp E]
 //     [--optimizer adam|lbfgs|adam+lbfgs]
@@ -320,7 +320,7 @@ int main(int argc, char** argv) {
   std::string csv_path, plot, optimizer = "adam", loss_name = "relaxed";
   double lr = 0.02;
   int polish = 100;
-  int seeds = 5, test_size = 400, epochs = 300, sanity_size = 30;
+  int seeds = 5, first_seed = 1, test_size = 400, epochs = 300, sanity_size = 30;
   double noise = 0.02, perturb = 0.25, stick_tol = 1e-3;
   app.add_option("--scene", scene, "polygon or pile30")->check(CLI::IsMember({"polygon", "pile30"}));
   app.add_option("--sizes", sizes_list, "training set sizes (transitions)");
@@ -333,6 +333,9 @@ int main(int argc, char** argv) {
                  "start on the same data; the nonphysical terms at 0)")
       ->check(CLI::IsMember({"perturbed", "relaxed"}));
   app.add_option("--seeds", seeds, "seeds per size");
+  app.add_option("--first-seed", first_seed,
+                 "first seed (seeds first..first+seeds-1; a seed's data and start do not depend on the others)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--test", test_size, "held-out transitions");
   app.add_option("--epochs", epochs, "L-BFGS iteration cap");
   app.add_option("--optimizer", optimizer, "adam (lr --lr, decay 0.003: the CLI's), lbfgs (lr 1) or adam+lbfgs")
@@ -376,10 +379,11 @@ int main(int argc, char** argv) {
     std::printf("mini-batches of %d above N = %d, epochs scaled to round(%d*%d/N) (the same %d steps); %d threads\n",
                 g_protocol.batch, g_protocol.batch, epochs, g_protocol.batch, epochs, g_protocol.threads);
   std::map<int, Problem> tests;
-  for (int s = 1; s <= seeds; ++s) tests[s] = make_problem(scene, test_size, 777777 + s, soft);
+  const int last_seed = first_seed + seeds - 1;
+  for (int s = first_seed; s <= last_seed; ++s) tests[s] = make_problem(scene, test_size, 777777 + s, soft);
   {
-    const Problem& test = tests[1];
-    std::printf("held-out set of seed 1: %zu transitions, %zu bodies\n", test.data.transitions.size(),
+    const Problem& test = tests[first_seed];
+    std::printf("held-out set of seed %d: %zu transitions, %zu bodies\n", first_seed, test.data.transitions.size(),
                 test.data.scene.world.bodies.size());
     for (const std::string& param : params) {
       const SceneParameterMap map(test.data.scene.world, param_settings(param));
@@ -433,7 +437,7 @@ int main(int argc, char** argv) {
   for (const std::string& param : params)
     for (int n : sizes) {
       Cell& c = cells[param][n];
-      for (int s = 1; s <= seeds; ++s) {
+      for (int s = first_seed; s <= last_seed; ++s) {
         Problem train_data = make_problem(scene, n, static_cast<std::uint64_t>(1000 * s + n), soft);
         add_noise(train_data.data, noise, static_cast<std::uint64_t>(31 * s + n));
         ParameterSet* physical_start = first_stage(train_data, n, s);
