@@ -4,6 +4,7 @@
 // run_learning_curves.cpp.
 //
 //   run_learning_curves_scene --scene polygon|pile30 [--sizes 10,30,100,300,1000] [--seeds 5] [--first-seed 1]
+//                             [--truth-loss]
 //     [--params physical,structured,residual,block,block_tied,softness] [--loss relaxed|hard]
 //     [--noise 0.02] [--true-compliance C --true-erp E]
 //     [--optimizer adam|lbfgs|adam+lbfgs]
@@ -42,14 +43,16 @@
 // 0.05 m, polygon_objective.hpp), full batch, 1 thread: by default Adam as the CLIs (lr 0.02,
 // decay 0.003, at most --epochs epochs, the trainer's convergence test); lbfgs: L-BFGS (lr
 // 1); adam+lbfgs: Adam, then at most --polish L-BFGS iterations.
-// --batch B (Adam only): at sizes N > B, mini-batches of B and round(--epochs·B/N) epochs, so
+// --batch B (Adam's steps; adam+lbfgs polishes on the full batch): at sizes N > B,
+// mini-batches of B and round(--epochs·B/N) epochs, so
 // that every size takes about the same number of optimizer steps (--epochs; exactly where B
 // divides N) on the same number of samples per step as a full-batch run at N = B (at N ≤ B:
 // full batch, as without it); the decay schedule counts steps, so it is the same too. With
 // mini-batches every epoch runs (the trainer's convergence test, TrainSettings::patience,
 // would cost a pass over the whole training set per epoch; the full-batch pile runs all ran
 // to their cap). --threads T: the batch's evaluations on T threads (sums in a fixed order:
-// the same numbers as on 1 thread).
+// the same numbers as on 1 thread). --truth-loss prints, per (N, seed), the training loss at
+// the learned θ and at the data's true θ (is the fit limited by the optimizer or the loss?).
 // Reported per run: test_error = sqrt(Σ‖v̂⁺ − v⁺‖² / Σ‖v⁺‖²) over the held-out transitions'
 // dynamic bodies (v = (vx, vy, ω), SI), v⁺ the recorded next velocity, v̂⁺ that of one
 // Simulator::step (the data's settings, LCP model, no warm start) of the world at the
@@ -277,7 +280,7 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
   const Index n = static_cast<Index>(train_data.data.transitions.size());
   t.epochs = epochs;
   t.threads = g_protocol.threads;
-  if (g_protocol.batch > 0 && n > g_protocol.batch && optimizer == "adam") {
+  if (g_protocol.batch > 0 && n > g_protocol.batch && optimizer != "lbfgs") {  // Adam's steps
     t.batch = g_protocol.batch;
     t.epochs = std::max(1, static_cast<int>(std::lround(static_cast<double>(epochs) * g_protocol.batch / n)));
     t.patience = 0;  // every epoch (no convergence test: with mini-batches it costs a full pass per epoch)
@@ -295,6 +298,8 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
   TrainResult tr = epochs > 0 ? train(objective, theta, all, {}, t) : TrainResult{};
   if (optimizer == "adam+lbfgs" && polish > 0) {  // L-BFGS from Adam's end point (Adam's step floor)
     t.epochs = polish;
+    t.batch = TrainSettings{}.batch;  // full batch
+    t.patience = TrainSettings{}.patience;
     t.optimizer = OptimizerSettings{};
     t.optimizer.kind = OptimizerKind::lbfgs;
     t.optimizer.learning_rate = 1.0;
@@ -310,6 +315,19 @@ RunResult run(const Problem& train_data, const Problem& test, const std::string&
   r.train_loss = evaluate_mean(objective, theta, all, g_protocol.threads).loss;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+// The training loss at the data's true θ (param's layout; the nonphysical terms at 0): the
+// value a consistent loss would have at its minimizer, to compare with the learned θ's.
+double loss_at_truth(const Problem& train_data, const std::string& param, LossMethod loss) {
+  const World& world = train_data.data.scene.world;
+  const SceneParameterMap map(world, param_settings(param));
+  SceneLossSettings ls;
+  ls.method = loss;
+  SceneObjective objective(train_data.data, map, ls);
+  std::vector<Index> all(train_data.data.transitions.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
+  return evaluate_mean(objective, map.parameters(world), all, g_protocol.threads).loss;
 }
 
 }  // namespace
@@ -353,12 +371,16 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv_path, "CSV of every run (none without this option)");
   app.add_option("--plot", plot, "plot of the median test error (.png/.svg); also _mode");
   app.add_option("--batch", g_protocol.batch,
-                 "Adam: mini-batches of this size above it, epochs scaled to the same number of steps (0: full batch)")
+                 "Adam (also adam+lbfgs's Adam): mini-batches of this size above it, epochs scaled to the same number of "
+                 "steps (0: full batch)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--threads", g_protocol.threads, "threads of the batch evaluations")->check(CLI::PositiveNumber);
+  bool truth_loss = false;
+  app.add_flag("--truth-loss", truth_loss,
+               "also print the training loss at the true theta of each (N, seed) (one more pass over the data)");
   CLI11_PARSE(app, argc, argv);
-  if (g_protocol.batch > 0 && optimizer != "adam") {
-    std::fprintf(stderr, "--batch needs --optimizer adam (L-BFGS is full batch)\n");
+  if (g_protocol.batch > 0 && optimizer == "lbfgs") {
+    std::fprintf(stderr, "--batch needs --optimizer adam or adam+lbfgs (L-BFGS is full batch)\n");
     return 2;
   }
   const std::vector<std::string> params = bench::split_list(params_list);
@@ -450,6 +472,9 @@ int main(int argc, char** argv) {
         }
         const RunResult r = run(train_data, tests[s], param, physical_start ? &start_theta : nullptr, perturb,
                                 static_cast<std::uint64_t>(s), epochs, stick_tol, optimizer, lr, polish, loss);
+        if (truth_loss)
+          std::printf("%s N = %d seed %d: training loss %.6g at the learned theta, %.6g at the true theta\n",
+                      param.c_str(), n, s, r.train_loss, loss_at_truth(train_data, param, loss));
         csv << scene_label << ',' << param << ',' << method << ',' << n << ',' << s << ',' << r.epochs << ',' << r.converged << ','
             << r.train_loss << ',' << r.test_error << ',' << r.mode_error << ',' << r.contacts << ',' << r.failed << ','
             << r.train_failed << ',' << r.seconds << '\n';
