@@ -24,6 +24,10 @@
 //   learn_convergence_{block,polygon}.png  learned-parameter error against training wall
 //                            time per method (learn_convergence.csv; errors below 1e-12
 //                            drawn at 1e-12)
+//   learning_curves_scene_pile30_all{,_mode}.png  the 30-body pile's learning curves over
+//                            every size run (learning_curves_scene.csv, Adam's relaxed-loss
+//                            rows): median next-state error and mean mode error per
+//                            parameterization
 // Slopes: least squares of log y against log x (pile_timing.hpp loglog_slope).
 // A missing CSV skips its plots with a message; without Cairo nothing is drawn (exit 1).
 #include "csv_table.hpp"
@@ -290,6 +294,41 @@ void convergence_plot(const std::vector<Row>& rows, const std::string& problem, 
   lcprelax::write_line_plot(out, series, o);
 }
 
+// A scene's learning curves over every training size in the merged CSV
+// (learning_curves_scene.csv): per parameterization, the median held-out next-state error
+// over the seeds (log-log) and the mean stick/slip mode error, rows of `method` only.
+void scene_curve_plot(const std::vector<Row>& rows, const std::string& scene, const std::string& method,
+                      const std::string& out, const std::string& out_mode) {
+  std::map<std::string, std::map<double, std::vector<double>>> err, mode;
+  for (const Row& r : rows) {
+    if (text(r, "scene") != scene || text(r, "method") != method) continue;
+    err[text(r, "param")][num(r, "samples")].push_back(num(r, "test_error"));
+    mode[text(r, "param")][num(r, "samples")].push_back(num(r, "mode_error"));
+  }
+  std::vector<lcprelax::LineSeries> e_series, m_series;
+  for (const auto& [param, by_n] : err) {
+    lcprelax::LineSeries e{param, {}, {}}, m{param, {}, {}};
+    e.markers = m.markers = true;
+    for (const auto& [n, v] : by_n) {
+      std::vector<double> sorted = v;
+      std::sort(sorted.begin(), sorted.end());
+      const std::size_t k = sorted.size();
+      e.x.push_back(n), e.y.push_back(k % 2 ? sorted[k / 2] : 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]));
+      double mean = 0;
+      for (double x : mode.at(param).at(n)) mean += x / static_cast<double>(mode.at(param).at(n).size());
+      m.x.push_back(n), m.y.push_back(mean);
+    }
+    e_series.push_back(e), m_series.push_back(m);
+  }
+  lcprelax::LinePlotOptions o = log_log(scene + " (" + method + " loss): held-out next-state error, median of seeds",
+                                        "training transitions", "relative RMS error of v+");
+  lcprelax::write_line_plot(out, e_series, o);
+  o.title = scene + " (" + method + " loss): held-out stick/slip mode error, mean of seeds";
+  o.y_label = "fraction of wrong modes";
+  o.log_y = false;
+  lcprelax::write_line_plot(out_mode, m_series, o);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -337,6 +376,10 @@ int main(int argc, char** argv) {
   each("learn_convergence.csv", [&](const std::vector<Row>& r) {
     convergence_plot(r, "block", out + "/learn_convergence_block.png");
     convergence_plot(r, "polygon", out + "/learn_convergence_polygon.png");
+  });
+  each("learning_curves_scene.csv", [&](const std::vector<Row>& r) {
+    scene_curve_plot(r, "pile30", "relaxed", out + "/learning_curves_scene_pile30_all.png",
+                     out + "/learning_curves_scene_pile30_all_mode.png");
   });
   std::printf("plots written to %s\n", out.c_str());
   return 0;
