@@ -1,8 +1,9 @@
 #pragma once
-// Reading the benchmark CSVs back (run_report_plots.cpp; header-only), and opening one for
-// writing only where asked (open_optional_csv): a header line,
+// Reading the benchmark CSVs back (run_report_plots.cpp; header-only), opening one for
+// writing only where asked (open_optional_csv), and the median their summaries use: a header line,
 // comma-separated fields, "…" quoting without commas inside (as Google Benchmark's
 // --benchmark_out_format=csv writes names and labels). Rows are maps column → text.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -23,6 +24,13 @@ inline std::vector<std::string> split_list(const std::string& s) {
   while (std::getline(in, item, ','))
     if (!item.empty()) out.push_back(item);
   return out;
+}
+
+/// The median of v (the mean of the middle two for an even count); v must not be empty.
+inline double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 /// Opens `path` for writing when it is not empty; false, with a message on stderr, when it

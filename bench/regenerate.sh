@@ -81,7 +81,7 @@ run "$B/run_learning_curves_scene" --scene polygon --params physical,block_tied,
 run "$B/run_learning_curves_scene" --scene pile30 --params physical,structured --sizes 10,30 --seeds 5 \
   --test 30 --sanity-size 10 --epochs 300 --csv "$R/learning_curves_scene_pile30.csv" \
   --plot "$R/plots/learning_curves_scene_pile30.png" > "$R/learning_curves_scene_pile30.txt"
-# The pile at N = 100 (8-15 min per run on 1 thread; the committed structured rows were run seed
+# The pile at N = 100 (8-16 min per run on 1 thread; the committed structured rows were run seed
 # by seed with --first-seed S --seeds 1 --truth-loss and appended).
 run "$B/run_learning_curves_scene" --scene pile30 --params physical,structured --sizes 100 --seeds 5 --test 30 \
   --sanity-size 0 --epochs 300 --csv "$R/learning_curves_scene_pile30_n100.csv" > "$R/learning_curves_scene_pile30_n100.txt"

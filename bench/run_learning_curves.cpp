@@ -111,12 +111,6 @@ RunResult run(BlockParam param, BlockMethod method, const BlockDataset& train_da
   return r;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -187,7 +181,7 @@ int main(int argc, char** argv) {
       }
       double mode = 0.0;
       for (double m : c.mode) mode += m / static_cast<double>(c.mode.size());
-      std::printf("%-20s %7d %12.4g %12.4g %12.4g %8d %9.2f\n", name.c_str(), n, median(c.err),
+      std::printf("%-20s %7d %12.4g %12.4g %12.4g %8d %9.2f\n", name.c_str(), n, bench::median(c.err),
                   *std::max_element(c.err.begin(), c.err.end()), mode, c.failed, c.seconds);
       std::fflush(stdout);
     }
@@ -197,7 +191,7 @@ int main(int argc, char** argv) {
   for (const std::string& name : rows) {
     std::string reach = "> " + std::to_string(sizes.back());
     for (int n : sizes)
-      if (median(cells[name][n].err) <= 0.01) {
+      if (bench::median(cells[name][n].err) <= 0.01) {
         reach = std::to_string(n);
         break;
       }
@@ -218,7 +212,7 @@ int main(int argc, char** argv) {
       l.markers = true;
       for (int n : sizes) {
         l.x.push_back(n);
-        l.y.push_back(median(cells[name][n].err));
+        l.y.push_back(bench::median(cells[name][n].err));
       }
       series.push_back(l);
     }

@@ -101,12 +101,6 @@ struct RunResult {
   bool converged = false;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // The truth's normal softness (--true-compliance, --true-erp); the learners' scene stays rigid.
 struct TrueSoftness {
   double compliance = 0.0, erp = 0.0;
@@ -487,7 +481,7 @@ int main(int argc, char** argv) {
       }
       double mode = 0;
       for (double m : c.mode) mode += m / c.mode.size();
-      std::printf("%-12s %7d %12.4g %12.4g %12.4g %8d %8d %9.1f\n", param.c_str(), n, median(c.err),
+      std::printf("%-12s %7d %12.4g %12.4g %12.4g %8d %8d %9.1f\n", param.c_str(), n, bench::median(c.err),
                   *std::max_element(c.err.begin(), c.err.end()), mode, c.failed, c.train_failed, c.seconds);
       std::fflush(stdout);
     }
@@ -495,7 +489,7 @@ int main(int argc, char** argv) {
   for (const std::string& param : params) {
     std::string reach = "> " + std::to_string(sizes.back());
     for (int n : sizes)
-      if (median(cells[param][n].err) <= 0.01) {
+      if (bench::median(cells[param][n].err) <= 0.01) {
         reach = std::to_string(n);
         break;
       }
@@ -515,7 +509,7 @@ int main(int argc, char** argv) {
           double m = 0;
           for (double x : c.mode) m += x / c.mode.size();
           l.x.push_back(n);
-          l.y.push_back(which == 0 ? median(c.err) : m);
+          l.y.push_back(which == 0 ? bench::median(c.err) : m);
         }
         series.push_back(l);
       }

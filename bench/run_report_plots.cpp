@@ -47,6 +47,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -299,24 +300,23 @@ void convergence_plot(const std::vector<Row>& rows, const std::string& problem, 
 // over the seeds (log-log) and the mean stick/slip mode error, rows of `method` only.
 void scene_curve_plot(const std::vector<Row>& rows, const std::string& scene, const std::string& method,
                       const std::string& out, const std::string& out_mode) {
-  std::map<std::string, std::map<double, std::vector<double>>> err, mode;
+  struct Cell {
+    std::vector<double> err, mode;
+  };
+  std::map<std::string, std::map<double, Cell>> cells;  // param → N → the seeds' errors
   for (const Row& r : rows) {
     if (text(r, "scene") != scene || text(r, "method") != method) continue;
-    err[text(r, "param")][num(r, "samples")].push_back(num(r, "test_error"));
-    mode[text(r, "param")][num(r, "samples")].push_back(num(r, "mode_error"));
+    Cell& c = cells[text(r, "param")][num(r, "samples")];
+    c.err.push_back(num(r, "test_error"));
+    c.mode.push_back(num(r, "mode_error"));
   }
   std::vector<lcprelax::LineSeries> e_series, m_series;
-  for (const auto& [param, by_n] : err) {
+  for (const auto& [param, by_n] : cells) {
     lcprelax::LineSeries e{param, {}, {}}, m{param, {}, {}};
     e.markers = m.markers = true;
-    for (const auto& [n, v] : by_n) {
-      std::vector<double> sorted = v;
-      std::sort(sorted.begin(), sorted.end());
-      const std::size_t k = sorted.size();
-      e.x.push_back(n), e.y.push_back(k % 2 ? sorted[k / 2] : 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]));
-      double mean = 0;
-      for (double x : mode.at(param).at(n)) mean += x / static_cast<double>(mode.at(param).at(n).size());
-      m.x.push_back(n), m.y.push_back(mean);
+    for (const auto& [n, c] : by_n) {
+      e.x.push_back(n), e.y.push_back(lcprelax::bench::median(c.err));
+      m.x.push_back(n), m.y.push_back(std::accumulate(c.mode.begin(), c.mode.end(), 0.0) / c.mode.size());
     }
     e_series.push_back(e), m_series.push_back(m);
   }
