@@ -6,22 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <string>
 
 namespace lcprelax::learn {
 namespace {
-
-// Deterministic u ∈ [½, 1) for LCP row i and pattern `seed` (a splitmix64 mix).
-double perturbation_weight(Index i, int seed) {
-  std::uint64_t x = static_cast<std::uint64_t>(i) * 0xD1B54A32D192ED03ULL + static_cast<std::uint64_t>(seed + 7);
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  x ^= x >> 31;
-  return 0.5 + 0.5 * static_cast<double>(x >> 11) * 0x1.0p-53;
-}
 
 bool finite(const Vector& v) { return v.allFinite(); }
 bool finite(const SparseMatrix& A) {
@@ -119,8 +108,7 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   bool perturbed = false;
   double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
   for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(sol); ++seed, delta *= 10.0) {
-    Vector q = lcp.q;
-    for (Index i = 0; i < n; ++i) q(i) += delta * perturbation_weight(i, seed);
+    const Vector q = lcp.q + delta * lcp_perturbation_pattern(s, seed);
     LemkeSolver& rp = attempt(plain, q, has_warm ? &warm_basis : nullptr);
     if (!solved(&rp)) continue;
     const std::vector<bool> basis = rp.result().z_basic;

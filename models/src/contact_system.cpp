@@ -71,6 +71,23 @@ double contact_gap_offset(const World& world, const Contact& c) {
   return c.body_b >= 0 ? a + world.bodies[c.body_b].gap_offset : a;
 }
 
+ContactKey contact_key(const std::vector<Contact>& contacts, std::size_t i) {
+  auto head = [&](std::size_t k) {
+    const Contact& c = contacts[k];
+    return std::array<int, 4>{c.body_a, c.body_b, static_cast<int>(c.static_kind), c.static_index};
+  };
+  const std::array<int, 4> h = head(i);
+  int ordinal = 0;
+  for (std::size_t k = i; k > 0 && head(k - 1) == h; --k) ++ordinal;
+  return {h[0], h[1], h[2], h[3], ordinal};
+}
+
+std::uint64_t contact_identity(const ContactKey& key) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (int v : key) h = (h ^ static_cast<std::uint32_t>(v)) * 0x100000001b3ULL;
+  return h;
+}
+
 ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
                                       const Island& island, double dt, const std::vector<Vec3>& applied) {
   if (!applied.empty() && applied.size() != world.bodies.size())
@@ -93,6 +110,9 @@ ContactSystem assemble_contact_system(const World& world, const std::vector<Cont
     if (has_velocity_residual(b)) s.v_star.segment<3>(3 * k) += velocity_residual_term(b);
   }
   const Index nc = s.num_contacts();
+  s.ids.resize(static_cast<std::size_t>(nc));
+  for (Index i = 0; i < nc; ++i)
+    s.ids[static_cast<std::size_t>(i)] = contact_identity(contact_key(contacts, static_cast<std::size_t>(s.contacts[i])));
   s.phi.resize(nc);
   std::vector<Triplet> tn, tt;
   std::vector<double> mu;

@@ -81,10 +81,10 @@ std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s) {
 
 namespace {
 
-// Deterministic pseudo-random u ∈ [½, 1) for LCP row i and pattern `seed` (splitmix64):
+// Deterministic pseudo-random u ∈ [½, 1) for row key i and pattern `seed` (splitmix64):
 // distinct, and the same for every run and thread count.
-double perturbation_weight(Index i, int seed) {
-  std::uint64_t x = static_cast<std::uint64_t>(i) + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(seed + 1);
+double perturbation_weight(std::uint64_t i, int seed) {
+  std::uint64_t x = i + 0x9E3779B97F4A7C15ULL * static_cast<std::uint64_t>(seed + 1);
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
   x ^= x >> 31;
@@ -93,12 +93,36 @@ double perturbation_weight(Index i, int seed) {
 
 }  // namespace
 
+Vector lcp_perturbation_pattern(const ContactSystem& s, int seed) {
+  const Index nc = s.num_contacts(), nf = s.num_friction();
+  const std::vector<std::uint64_t>& ids = s.ids;
+  if (!ids.empty() && static_cast<Index>(ids.size()) != nc)
+    throw InputError("lcp model: ContactSystem::ids has " + std::to_string(ids.size()) + " entries for " +
+                     std::to_string(nc) + " contacts (one per contact, or none)");
+  if (seed < 0) throw InputError("lcp_perturbation_pattern: seed must be >= 0");
+  // Row key: 4·(contact key) + kind (0 λn, 1 β⁺, 2 β⁻, 3 γ); unsigned arithmetic wraps.
+  auto key = [&](Index c) {
+    return 4 * (ids.empty() ? static_cast<std::uint64_t>(c) : ids[static_cast<std::size_t>(c)]);
+  };
+  Vector u(nc + 3 * nf);
+  for (Index c = 0; c < nc; ++c) u(c) = perturbation_weight(key(c), seed);
+  for (Index f = 0; f < nf; ++f) {
+    const std::uint64_t k = key(s.friction_rows[f]);
+    u(nc + f) = perturbation_weight(k + 1, seed);
+    u(nc + nf + f) = perturbation_weight(k + 2, seed);
+    u(nc + 2 * nf + f) = perturbation_weight(k + 3, seed);
+  }
+  return u;
+}
+
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   const Index n = lcp.q.size();
   const bool has_warm = static_cast<Index>(warm.size()) == n;
+  std::vector<Vector> patterns;  // u of each seed (lcp_perturbation_pattern)
+  for (int seed = 0; seed < kLcpPerturbationSeeds; ++seed) patterns.push_back(lcp_perturbation_pattern(s, seed));
   // Attempts, cheapest first (contact_step.hpp). Lemke's own retries only in the last one;
   // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
   LemkeSettings plain = settings;
@@ -129,9 +153,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   };
   auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
   auto perturbed = [&](double delta, int seed) {
-    Vector q = lcp.q;
-    for (Index i = 0; i < n; ++i) q(i) += delta * perturbation_weight(i, seed);
-    return q;
+    return Vector(lcp.q + delta * patterns[static_cast<std::size_t>(seed)]);
   };
   // A solution of a perturbed q, polished on q from its basis (a short crash path): r
   // when the polish solves q, else kept as the inexact fallback.
@@ -144,8 +166,10 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   // 1. The warm basis on q where it is feasible.
   if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
   // 2. A crash path on the perturbed q from the warm basis, at most
-  //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. A failed polish
-  //    leaves the cold attempts their chance (no inexact fallback from here).
+  //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
+  //    step 3's first one: when the polish fails, its solution is kept as the inexact
+  //    fallback and step 3 does not solve the same perturbed LCP again from the all-w basis
+  //    (it would end at the same basis and fail the same polish).
   double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
   if (has_warm && !solved(r)) {
     LemkeSettings warm_crash = plain;
@@ -153,14 +177,13 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     warm_crash.crash_cold_fallback = false;  // step 3 is the cold start
     warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
     const LcpResult& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
-    if (solved(&rc)) {
-      const LcpResult& polished = attempt(polish, lcp.q, &rc.z_basic);
-      if (solved(&polished)) r = &polished;
-    }
+    if (solved(&rc)) polish_on_q(rc);
   }
-  // 3. Perturbed q + δu from the all-w basis, polished on q.
+  // 3. Perturbed q + δu from the all-w basis (capped as step 4), polished on q.
+  LemkeSettings cold = plain;
+  cold.max_pivots = exact.max_pivots;
   for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
-    const LcpResult& rp = attempt(plain, perturbed(delta, seed), nullptr);
+    const LcpResult& rp = attempt(cold, perturbed(delta, seed), nullptr);
     if (solved(&rp)) polish_on_q(rp);
   }
   // 4. Exact from the all-w basis (degenerate piles often end it on a ray or a singular

@@ -130,11 +130,7 @@ void Simulator::check_extreme_values() const {
 
 std::vector<Simulator::ContactKey> Simulator::contact_keys() const {
   std::vector<ContactKey> keys(contacts_.size());
-  for (std::size_t i = 0; i < contacts_.size(); ++i) {
-    const Contact& c = contacts_[i];
-    keys[i] = {c.body_a, c.body_b, static_cast<int>(c.static_kind), c.static_index, 0};
-    if (i > 0 && std::equal(keys[i].begin(), keys[i].begin() + 4, keys[i - 1].begin())) keys[i][4] = keys[i - 1][4] + 1;
-  }
+  for (std::size_t i = 0; i < contacts_.size(); ++i) keys[i] = contact_key(contacts_, i);
   return keys;
 }
 

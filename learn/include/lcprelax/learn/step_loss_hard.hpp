@@ -9,7 +9,8 @@
 // Solve: the sparse Lemke (lcp/lemke.hpp) with the attempts of solve_lcp_model: (1) plain
 // Lemke on q from the warm basis (if given), else cold; (2) up to kLcpPerturbationSeeds
 // perturbed q + δu (δ = kLcpPerturbation·‖q‖∞, ten times larger for each next pattern,
-// u_i ∈ [½, 1) deterministic per row), whose basis is then tried on q ("polish");
+// u = lcp_perturbation_pattern(s, seed), the simulator's, keyed by ContactSystem::ids),
+// whose basis is then tried on q ("polish");
 // (3) Lemke with the caller's settings (covering and M + εI retries). status: solved
 // (the LCP's own solution), solved_inaccurate (the solution of the perturbed LCP: loss and
 // gradient are those of q + δu with δu held fixed), failed (no solution: loss NaN, the

@@ -24,12 +24,20 @@
 //   1. the warm basis (if given) where its basic solution on q is feasible (no pivots);
 //   1b. a crash path (LemkeSettings::crash_start) from the warm basis on the perturbed q of
 //      step 2 (first pattern), at most kLcpWarmCrashPivotsPerUnknown pivots per unknown,
-//      then the polish of step 2; if either fails, step 2 runs as without a warm basis;
+//      then the polish of step 2; if the crash path fails, step 2 runs as without a warm
+//      basis; if only the polish fails, the crash path's solution is kept as the inexact
+//      fallback and step 2 is skipped (its first pattern is the same perturbed LCP: the cold
+//      path would end at the same basis and fail the same polish; on a 500-body pile this
+//      halved the pivots per step, bench/README.md);
 //   2. Lemke from the all-w basis on the perturbed q + δu, δ = kLcpPerturbation·‖q‖∞,
-//      u_i ∈ [½, 1) pseudo-random per row (deterministic): distinct positive offsets break
-//      the ties of the degenerate pivots (the perturbation that the lexicographic rule only
-//      simulates, made real: in floating point the rule's tie tolerance lets large
-//      degenerate piles cycle or end on a ray). Its solution's basis then starts a crash
+//      u_i ∈ [½, 1) pseudo-random per row (deterministic, lcp_perturbation_pattern): distinct
+//      positive offsets break the ties of the degenerate pivots (the perturbation that the
+//      lexicographic rule only simulates, made real: in floating point the rule's tie
+//      tolerance lets large degenerate piles cycle or end on a ray). u is a hash of the
+//      row's contact identity (ContactSystem::ids), so that a
+//      contact keeps its offsets from step to step, and the degenerate ties are broken the
+//      same way as in the previous step, whose basis is step 1b's warm start. Each attempt
+//      is capped at kLcpExactPivotsPerUnknown pivots per unknown. Its solution's basis then starts a crash
 //      path on q of at most n/10 pivots ("polish"; 0–20 on a 200-body pile; no cold start
 //      after it), exact, so resting bodies stay exactly at rest and the next step is warm-started. Up to
 //      kLcpPerturbationSeeds patterns, δ ten times larger for each next one;
@@ -143,6 +151,12 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
 /// Each contact's indices in the LCP's z = [λn (nc), β⁺, β⁻, γ (nf each)]: 4 per contact in the
 /// order λn, β⁺, β⁻, γ, with −1 for the last three of a contact without a friction row.
 std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s);
+
+/// The lcp model's perturbation pattern u (step 2 above) for pattern number `seed` ≥ 0, in
+/// the LCP's row order z = [λn, β⁺, β⁻, γ]: u_i ∈ [½, 1), a hash of (the key of row i's
+/// contact, the row's kind, seed). The key of contact c is s.ids[c] (its identity across
+/// time steps) when s.ids has nc entries, c when it is empty; other sizes throw InputError.
+Vector lcp_perturbation_pattern(const ContactSystem& s, int seed);
 
 /// Solves the lcp model; `warm` (size nc + 3nf, or empty) is tried as the first basis.
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,

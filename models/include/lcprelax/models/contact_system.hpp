@@ -26,6 +26,8 @@
 #include <lcprelax/world/world.hpp>
 #include <lcprelax/sparse/types.hpp>
 
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,10 @@ struct ContactSystem {
   Vector compliance;          ///< normal compliance c per contact (1/kg), or empty (all 0)
   Vector erp;                 ///< erp e per contact (in [0, 1]), or empty (all 0)
   Vector v_star;              ///< free velocity v + Δt M⁻¹ f (3·bodies)
+  /// Identity of each contact across time steps (contact_identity of its contact_key), set
+  /// by assemble_contact_system; empty: contact c is known by its index only. The lcp model
+  /// keys its perturbation by it (contact_step.hpp, lcp_perturbation_pattern).
+  std::vector<std::uint64_t> ids;
   ContactLcpBlock lcp_block;  ///< the world's per-contact LCP correction (world.hpp; lcp model only)
 
   Index num_contacts() const { return static_cast<Index>(contacts.size()); }
@@ -65,6 +71,14 @@ struct ContactSystem {
 /// Assembles an island: Jacobians, gaps, μ, M⁻¹ and the free velocity v* = v + Δt·g
 /// (gravity; applied generalized forces enter through `applied`, 3 per world body, N and
 /// N·m, or empty).
+/// contacts[i]'s key: (body_a, body_b, static kind, static index, ordinal among the run of
+/// consecutive contacts with those four), the same pair and feature pattern from step to
+/// step while the collision order (contact/collision.hpp) keeps a pair's points together.
+using ContactKey = std::array<int, 5>;
+ContactKey contact_key(const std::vector<Contact>& contacts, std::size_t i);
+/// A 64-bit hash (FNV-1a over the five fields) of a contact key.
+std::uint64_t contact_identity(const ContactKey& key);
+
 ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
                                       const Island& island, double dt, const std::vector<Vec3>& applied = {});
 

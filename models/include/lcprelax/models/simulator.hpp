@@ -187,7 +187,7 @@ class Simulator {
 
  private:
   void check_extreme_values() const;  // the kMaxSceneMagnitude checks of the constructor
-  using ContactKey = std::array<int, 5>;
+  using ContactKey = lcprelax::ContactKey;
   struct WarmEntry {
     bool normal = false, plus = false, minus = false, slide = false;
   };
