@@ -194,8 +194,12 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     r = inexact;
     from_perturbed = true;
   }
-  // 5. The caller's settings (covering-vector and M + εI retries).
-  if (!solved(r)) r = &attempt(settings, lcp.q, nullptr);
+  // 5. The caller's settings (covering-vector and M + εI retries), each solve capped as
+  //    step 4 unless the caller set max_pivots (Lemke's own default, 50 per unknown, let
+  //    one step of a 1,000-body pile run for minutes).
+  LemkeSettings last = settings;
+  if (last.max_pivots == 0) last.max_pivots = exact_cap;
+  if (!solved(r)) r = &attempt(last, lcp.q, nullptr);
 
   ContactSolution out;
   out.status = !solved(r) ? ContactStatus::failed : from_perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;

@@ -47,7 +47,9 @@
 //      unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes
 //      slip);
 //   4. Lemke with the caller's settings (covering-vector and M + εI retries; costly on
-//      large islands).
+//      large islands), each solve capped at kLcpExactPivotsPerUnknown pivots per unknown
+//      unless settings.max_pivots is set. So every attempt is bounded: at most about 30
+//      pivots per unknown per island and step in all.
 //   ContactSolution::warm_started is set only when step 1 solved it (zero pivots).
 //   ContactSolution::residual is always that of the unperturbed LCP (≤ δ after step 2).
 //
@@ -94,7 +96,7 @@ constexpr int kLcpPerturbationSeeds = 3;
 /// step at 500 bodies 18,154 with 1/2, 12,322 with 1; 100 and 200 bodies unchanged). A
 /// path that fails at the cap costs at most about one cold solve more.
 constexpr double kLcpWarmCrashPivotsPerUnknown = 1.0;
-/// Pivot cap per LCP unknown of the exact attempt from the all-w basis (step 3 above): on a
+/// Pivot cap per LCP unknown of the cold attempts (steps 2, 3 and 4 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
 constexpr long kLcpExactPivotsPerUnknown = 3;
