@@ -80,14 +80,21 @@ bool LemkeSolver::Impl::repair_warm_basis() {
 // negative x_B,i exactly as it enters at the most negative q_i from the all-w basis, and
 // the pivots that follow are Lemke's method on the principal pivotal transform of the
 // LCP with respect to B (Cottle, Pang & Stone 1992, §4.4 and §2.3). A basis close to the
-// solution's leaves few negative entries and the path is short. d is restored afterwards;
-// true only when the path ends solved.
+// solution's leaves few negative entries and the path is short. With
+// crash_covering_from_basis = false d stays the settings' covering vector: for a basis that
+// solves q + δd the path is the homotopy from q + θd (θ ≤ δ) back to q, and z₀ enters
+// only where it raises x_B ((B⁻¹d)_i > 0; lemke_pivot.cpp refuses a start it cannot cover).
+// d is restored afterwards; true only when the path ends solved.
 bool LemkeSolver::Impl::try_crash_start() {
   d_cover = d;
-  d.setZero();
-  const detail::LemkeColumns cols{&M, &d, n};
-  for (Index k = 0; k < n; ++k) cols.add_to(basic[k], 1.0, d);
+  if (settings.crash_covering_from_basis) {
+    d.setZero();
+    const detail::LemkeColumns cols{&M, &d, n};
+    for (Index k = 0; k < n; ++k) cols.add_to(basic[k], 1.0, d);
+  }
+  covering_along_settings = !settings.crash_covering_from_basis;
   pivot_from_current_basis();
+  covering_along_settings = false;
   d = d_cover;
   const bool solved = has_solution(result.info.status);
   result.info.crash_started = true;

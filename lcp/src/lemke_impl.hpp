@@ -45,6 +45,7 @@ struct LemkeSolver::Impl {
   Vector z_spare, w_spare;           // storage of result.z / result.w between solves
   Vector z_clip, w_clip;             // z clipped at 0 and its w (extract_solution)
   Vector d_cover;                    // the settings' covering vector during a crash start
+  bool covering_along_settings = false;  // a crash path with the settings' d (not B·1)
   std::vector<Index> rows, keep;     // candidate rows of the ratio test
   detail::LexicographicTie ties;     // the tie-break on rows of B⁻¹ (lemke_lexicographic.hpp)
 

@@ -69,7 +69,18 @@ void LemkeSolver::Impl::pivot_from_current_basis() {
   basis->solve_column(entering, a);  // = −d
   ratio_col = -a;
   rows.clear();
-  for (Index i = 0; i < n; ++i) rows.push_back(i);
+  if (!covering_along_settings) {
+    // B⁻¹d = d > 0 from the all-w basis, = 1 for d = B·1: every row is a candidate.
+    for (Index i = 0; i < n; ++i) rows.push_back(i);
+  } else {
+    // A crash basis with the settings' d: only rows where z₀ raises x_B (B⁻¹d > 0); a
+    // negative x_B,i in any other row cannot be covered.
+    for (Index i = 0; i < n; ++i) {
+      if (ratio_col(i) > tol) rows.push_back(i);
+      else if (xB(i) < -tol) return finish(LcpStatus::numerical_error, "the covering vector does not cover the start basis");
+    }
+    if (rows.empty()) return finish(LcpStatus::numerical_error, "the covering vector does not cover the start basis");
+  }
   Index r = lexicographic_row(ratio_col, xB, false);
   for (long pivot = 0;; ++pivot) {
     if (r < 0) return finish(LcpStatus::numerical_error, "non-finite ratio in the minimum-ratio test (basis lost accuracy)");

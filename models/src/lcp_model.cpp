@@ -155,12 +155,19 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   auto perturbed = [&](double delta, int seed) {
     return Vector(lcp.q + delta * patterns[static_cast<std::size_t>(seed)]);
   };
-  // A solution of a perturbed q, polished on q from its basis (a short crash path): r
-  // when the polish solves q, else kept as the inexact fallback.
+  // A solution of a perturbed q + δu, polished on q from its basis by a short crash path
+  // with the covering vector B·1, and where that fails along u (the homotopy from q + θu
+  // back to q): r when a polish solves q, else kept as the inexact fallback.
   const LcpResult* inexact = nullptr;
-  auto polish_on_q = [&](const LcpResult& rp) {
-    const LcpResult& polished = attempt(polish, lcp.q, &rp.z_basic);
-    if (solved(&polished)) r = &polished;
+  auto polish_on_q = [&](const LcpResult& rp, int seed) {
+    const LcpResult* polished = &attempt(polish, lcp.q, &rp.z_basic);
+    if (!solved(polished)) {  // the homotopy along the perturbation (lcp_types.hpp)
+      LemkeSettings along = polish;
+      along.crash_covering_from_basis = false;
+      along.covering = patterns[static_cast<std::size_t>(seed)];
+      polished = &attempt(along, lcp.q, &rp.z_basic);
+    }
+    if (solved(polished)) r = polished;
     else inexact = &rp;
   };
   // 1. The warm basis on q where it is feasible.
@@ -177,14 +184,14 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     warm_crash.crash_cold_fallback = false;  // step 3 is the cold start
     warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
     const LcpResult& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
-    if (solved(&rc)) polish_on_q(rc);
+    if (solved(&rc)) polish_on_q(rc, 0);
   }
   // 3. Perturbed q + δu from the all-w basis (capped as step 4), polished on q.
   LemkeSettings cold = plain;
   cold.max_pivots = exact.max_pivots;
   for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
     const LcpResult& rp = attempt(cold, perturbed(delta, seed), nullptr);
-    if (solved(&rp)) polish_on_q(rp);
+    if (solved(&rp)) polish_on_q(rp, seed);
   }
   // 4. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution.

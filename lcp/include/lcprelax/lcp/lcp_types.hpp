@@ -111,6 +111,12 @@ struct LemkeSettings {
   /// start in the same solve (true), or stop with the crash path's status (false: the
   /// caller has its own cold attempt; max_pivots then bounds the crash path alone).
   bool crash_cold_fallback = true;
+  /// Covering vector of a crash path: d = B·1 for the warm basis B (true: z₀ enters at the
+  /// most negative basic value), or the settings' covering vector (false): for a basis that
+  /// solves the perturbed LCP q + δd, the path is then the homotopy from q + θd (θ ≤ δ)
+  /// back to q. A negative basic value that d does not raise ((B⁻¹d)_i ≤ 0) makes the start
+  /// inadmissible: the crash path stops with numerical_error.
+  bool crash_covering_from_basis = true;
   /// Rounds of block principal pivoting on a crash basis before Lemke runs from it: the
   /// basic variables that are negative are exchanged for their complements while the count
   /// of negative ones falls (lemke_crash.cpp). 0: off. Granular fc2d from a 50-sweep PGS

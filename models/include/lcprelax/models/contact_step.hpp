@@ -38,8 +38,12 @@
 //      contact keeps its offsets from step to step, and the degenerate ties are broken the
 //      same way as in the previous step, whose basis is step 1b's warm start. Each attempt
 //      is capped at kLcpExactPivotsPerUnknown pivots per unknown. Its solution's basis then starts a crash
-//      path on q of at most n/10 pivots ("polish"; 0–20 on a 200-body pile; no cold start
-//      after it), exact, so resting bodies stay exactly at rest and the next step is warm-started. Up to
+//      path on q of at most n/10 pivots ("polish"; no cold start after it), with the
+//      covering vector B·1 and, where that path fails, along u (the homotopy from q + θu,
+//      θ ≤ δ, back to q; LemkeSettings::crash_covering_from_basis = false): exact, so resting
+//      bodies stay exactly at rest and the next step is warm-started. On 200- and 500-body
+//      piles the first polish fails on about half of the steps (a ray or a singular basis
+//      after 100–900 pivots) and the second rescues about a third of those. Up to
 //      kLcpPerturbationSeeds patterns, δ ten times larger for each next one;
 //   3. when no polish succeeded: Lemke on q from the all-w basis, at most
 //      kLcpExactPivotsPerUnknown pivots per unknown; failing that, a perturbed solution is
