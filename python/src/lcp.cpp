@@ -35,6 +35,7 @@ const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
                       [](const S& s) { return py::object(to_numpy(s.covering)); }},
       bool_field("crash_start", &S::crash_start),
       bool_field("crash_cold_fallback", &S::crash_cold_fallback),
+      bool_field("crash_covering_from_basis", &S::crash_covering_from_basis),
       int_field("crash_flip_rounds", &S::crash_flip_rounds)};
   return fields;
 }

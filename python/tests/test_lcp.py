@@ -1,5 +1,6 @@
 """LemkeSolver: a 3x3 positive definite LCP solved to complementarity 1e-10 (checked in
-NumPy), its backward pass against finite differences, warm start and settings, and the
+NumPy), its backward pass against finite differences, warm start and settings (a crash path
+along the covering vector among them), and the
 Siconos LCP reader feeding the solver."""
 import numpy as np
 import pytest
@@ -74,6 +75,17 @@ def test_lemke_settings():
     r = solver.solve()
     assert r.method == "sparse"
     check_complementary(M, Q, r)
+    # The homotopy crash path: from the basis that solves q + u it reaches q's solution.
+    u = np.array([0.5, 0.75, 1.0])
+    perturbed = lcprelax.LemkeSolver()
+    perturbed.setup(sp.csc_matrix(M), Q + 2.0 * u)
+    basis = perturbed.solve().z_basic
+    along = lcprelax.LemkeSolver(crash_start=True, crash_cold_fallback=False, crash_flip_rounds=0,
+                                 crash_covering_from_basis=False, covering=u)
+    assert along.settings["crash_covering_from_basis"] is False
+    along.setup(sp.csc_matrix(M), Q)
+    along.warm_start(basis)
+    check_complementary(M, Q, along.solve())
     with pytest.raises(TypeError, match="pivots"):
         lcprelax.LemkeSolver(pivots=3)
     with pytest.raises(lcprelax.InputError, match="method"):
