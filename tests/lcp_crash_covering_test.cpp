@@ -69,33 +69,27 @@ TEST(LemkeCrashCovering, UncoveredStartIsRefused) {
   s.covering_retries = 0;   // and Lemke's retries would solve it from other starts
   s.regularization_retries = 0;
   s.crash_start = true;
-  s.crash_cold_fallback = false;
-  s.crash_covering_from_basis = false;
-  LemkeSolver refused(s);
-  refused.setup(M, q);
-  refused.warm_start(warm);
-  const LcpResult& r = refused.solve();
-  EXPECT_EQ(r.info.status, LcpStatus::numerical_error) << r.info.message;
-  EXPECT_NE(r.info.message.find("covering vector does not cover"), std::string::npos) << r.info.message;
+  auto from_warm = [&](bool covering_from_basis, bool cold_fallback) {
+    LemkeSettings t = s;
+    t.crash_covering_from_basis = covering_from_basis;
+    t.crash_cold_fallback = cold_fallback;
+    LemkeSolver solver(t);
+    solver.setup(M, q);
+    solver.warm_start(warm);
+    return solver.solve();  // a copy: the solver goes out of scope
+  };
+  const LcpResult refused = from_warm(false, false);
+  EXPECT_EQ(refused.info.status, LcpStatus::numerical_error) << refused.info.message;
+  EXPECT_NE(refused.info.message.find("covering vector does not cover"), std::string::npos) << refused.info.message;
 
-  s.crash_cold_fallback = true;
-  LemkeSolver fallback(s);
-  fallback.setup(M, q);
-  fallback.warm_start(warm);
-  const LcpResult& f = fallback.solve();
-  ASSERT_EQ(f.info.status, LcpStatus::solved) << f.info.message;
-  EXPECT_NEAR(f.z(0), 0.0, 1e-14);  // z = (0, ½), w = (3/2, 0)
-  EXPECT_NEAR(f.z(1), 0.5, 1e-14);
+  const LcpResult cold = from_warm(false, true);
+  ASSERT_EQ(cold.info.status, LcpStatus::solved) << cold.info.message;
+  EXPECT_NEAR(cold.z(0), 0.0, 1e-14);  // z = (0, ½), w = (3/2, 0)
+  EXPECT_NEAR(cold.z(1), 0.5, 1e-14);
 
-  LemkeSettings basis_ones = s;
-  basis_ones.crash_covering_from_basis = true;
-  basis_ones.crash_cold_fallback = false;
-  LemkeSolver crash(basis_ones);
-  crash.setup(M, q);
-  crash.warm_start(warm);
-  const LcpResult& c = crash.solve();
-  ASSERT_EQ(c.info.status, LcpStatus::solved) << c.info.message;
-  EXPECT_NEAR(c.z(1), 0.5, 1e-14);
+  const LcpResult crash = from_warm(true, false);
+  ASSERT_EQ(crash.info.status, LcpStatus::solved) << crash.info.message;
+  EXPECT_NEAR(crash.z(1), 0.5, 1e-14);
 }
 
 }  // namespace

@@ -92,9 +92,7 @@ bool LemkeSolver::Impl::try_crash_start() {
     const detail::LemkeColumns cols{&M, &d, n};
     for (Index k = 0; k < n; ++k) cols.add_to(basic[k], 1.0, d);
   }
-  covering_along_settings = !settings.crash_covering_from_basis;
-  pivot_from_current_basis();
-  covering_along_settings = false;
+  pivot_from_current_basis(!settings.crash_covering_from_basis);
   d = d_cover;
   const bool solved = has_solution(result.info.status);
   result.info.crash_started = true;

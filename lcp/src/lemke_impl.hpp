@@ -45,7 +45,6 @@ struct LemkeSolver::Impl {
   Vector z_spare, w_spare;           // storage of result.z / result.w between solves
   Vector z_clip, w_clip;             // z clipped at 0 and its w (extract_solution)
   Vector d_cover;                    // the settings' covering vector during a crash start
-  bool covering_along_settings = false;  // a crash path with the settings' d (not B·1)
   std::vector<Index> rows, keep;     // candidate rows of the ratio test
   detail::LexicographicTie ties;     // the tie-break on rows of B⁻¹ (lemke_lexicographic.hpp)
 
@@ -65,7 +64,9 @@ struct LemkeSolver::Impl {
 
   // lemke_pivot.cpp
   void run();
-  void pivot_from_current_basis();
+  /// covered_rows_only: z₀ enters only at rows where B⁻¹d > 0 (a crash path with the
+  /// settings' d, not B·1); a negative basic value elsewhere ends it with numerical_error.
+  void pivot_from_current_basis(bool covered_rows_only = false);
   Index lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0);
 
   // lemke_crash.cpp

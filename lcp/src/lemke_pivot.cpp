@@ -63,13 +63,13 @@ void LemkeSolver::Impl::run() {
 
 // Lemke's pivots from the factorized current basis (without z₀) and x_B = B⁻¹q: z₀
 // enters at the most negative x_B,i/(B⁻¹d)_i (lexicographically on [x_B, B⁻¹]/(B⁻¹d)).
-void LemkeSolver::Impl::pivot_from_current_basis() {
+void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
   result.info.pivots = 0;
   Index entering = z0();
   basis->solve_column(entering, a);  // = −d
   ratio_col = -a;
   rows.clear();
-  if (!covering_along_settings) {
+  if (!covered_rows_only) {
     // B⁻¹d = d > 0 from the all-w basis, = 1 for d = B·1: every row is a candidate.
     for (Index i = 0; i < n; ++i) rows.push_back(i);
   } else {

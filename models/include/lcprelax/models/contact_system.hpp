@@ -68,9 +68,6 @@ struct ContactSystem {
   Index num_dofs() const { return static_cast<Index>(3 * bodies.size()); }
 };
 
-/// Assembles an island: Jacobians, gaps, μ, M⁻¹ and the free velocity v* = v + Δt·g
-/// (gravity; applied generalized forces enter through `applied`, 3 per world body, N and
-/// N·m, or empty).
 /// contacts[i]'s key: (body_a, body_b, static kind, static index, ordinal among the run of
 /// consecutive contacts with those four), the same pair and feature pattern from step to
 /// step while the collision order (contact/collision.hpp) keeps a pair's points together.
@@ -79,6 +76,9 @@ ContactKey contact_key(const std::vector<Contact>& contacts, std::size_t i);
 /// A 64-bit hash (FNV-1a over the five fields) of a contact key.
 std::uint64_t contact_identity(const ContactKey& key);
 
+/// Assembles an island: Jacobians, gaps, μ, M⁻¹ and the free velocity v* = v + Δt·g
+/// (gravity; applied generalized forces enter through `applied`, 3 per world body, N and
+/// N·m, or empty).
 ContactSystem assemble_contact_system(const World& world, const std::vector<Contact>& contacts,
                                       const Island& island, double dt, const std::vector<Vec3>& applied = {});
 
