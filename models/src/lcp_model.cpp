@@ -121,8 +121,15 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   const Index n = lcp.q.size();
   const bool has_warm = static_cast<Index>(warm.size()) == n;
-  std::vector<Vector> patterns;  // u of each seed (lcp_perturbation_pattern)
-  for (int seed = 0; seed < kLcpPerturbationSeeds; ++seed) patterns.push_back(lcp_perturbation_pattern(s, seed));
+  // u of each seed (lcp_perturbation_pattern), built on first use: a step that the warm
+  // basis solves needs none. The identities are checked up front all the same.
+  std::vector<Vector> patterns(static_cast<std::size_t>(kLcpPerturbationSeeds));
+  auto pattern = [&](int seed) -> const Vector& {
+    Vector& u = patterns[static_cast<std::size_t>(seed)];
+    if (u.size() == 0 && n > 0) u = lcp_perturbation_pattern(s, seed);
+    return u;
+  };
+  if (!s.ids.empty() && static_cast<Index>(s.ids.size()) != nc) (void)lcp_perturbation_pattern(s, 0);  // throws
   // Attempts, cheapest first (contact_step.hpp). Lemke's own retries only in the last one;
   // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
   LemkeSettings plain = settings;
@@ -153,7 +160,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   };
   auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
   auto perturbed = [&](double delta, int seed) {
-    return Vector(lcp.q + delta * patterns[static_cast<std::size_t>(seed)]);
+    return Vector(lcp.q + delta * pattern(seed));
   };
   // A solution of a perturbed q + δu, polished on q from its basis by a short crash path
   // with the covering vector B·1, and where that fails along u (the homotopy from q + θu
@@ -164,7 +171,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     if (!solved(polished)) {  // the homotopy along the perturbation (lcp_types.hpp)
       LemkeSettings along = polish;
       along.crash_covering_from_basis = false;
-      along.covering = patterns[static_cast<std::size_t>(seed)];
+      along.covering = pattern(seed);
       polished = &attempt(along, lcp.q, &rp.z_basic);
     }
     if (solved(polished)) r = polished;
