@@ -67,6 +67,7 @@ struct LemkeSolver::Impl {
   /// covered_rows_only: z₀ enters only at rows where B⁻¹d > 0 (a crash path with the
   /// settings' d, not B·1); a negative basic value elsewhere ends it with numerical_error.
   void pivot_from_current_basis(bool covered_rows_only = false);
+  bool entering_candidates(Index entering);
   Index lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0);
 
   // lemke_crash.cpp

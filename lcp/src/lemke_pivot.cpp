@@ -61,6 +61,16 @@ void LemkeSolver::Impl::run() {
   result.info.pivots += crash_pivots;
 }
 
+// a = B⁻¹ c_entering and the rows where a_i > tol (the ratio test's candidates); false if
+// there are none.
+bool LemkeSolver::Impl::entering_candidates(Index entering) {
+  basis->solve_column(entering, a);
+  rows.clear();
+  for (Index i = 0; i < n; ++i)
+    if (a(i) > tol) rows.push_back(i);
+  return !rows.empty();
+}
+
 // Lemke's pivots from the factorized current basis (without z₀) and x_B = B⁻¹q: z₀
 // enters at the most negative x_B,i/(B⁻¹d)_i (lexicographically on [x_B, B⁻¹]/(B⁻¹d)).
 void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
@@ -102,10 +112,14 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
     if (result.info.pivots >= max_pivots) return finish(LcpStatus::pivot_limit, "pivot limit reached");
     if (!updated && !refactor(xB)) return finish(LcpStatus::numerical_error, "basis became singular");
     entering = complement(leaving, n);
-    basis->solve_column(entering, a);
-    rows.clear();
-    for (Index i = 0; i < n; ++i)
-      if (a(i) > tol) rows.push_back(i);
+    if (!entering_candidates(entering) && !factor_current) {
+      // No positive entry in a column solved with an updated factorization: before calling
+      // it a ray, refactorize the current basis and solve the column again (a ray can be
+      // roundoff of the updates; simplex codes recheck unboundedness the same way).
+      ++result.info.ray_rechecks;
+      if (!refactor(xB)) return finish(LcpStatus::numerical_error, "basis became singular");
+      entering_candidates(entering);
+    }
     if (rows.empty()) return finish(LcpStatus::ray_termination, "ray termination: no solution found by Lemke");
     r = lexicographic_row(a, xB, true);
   }

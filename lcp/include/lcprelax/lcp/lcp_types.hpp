@@ -142,6 +142,7 @@ struct LcpInfo {
   int repair_rounds = 0;    ///< rounds of basis repair of a singular crash basis (lemke_crash.cpp)
   LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
   long refactorizations = 0;  ///< basis factorizations from scratch
+  long ray_rechecks = 0;  ///< rays found with an updated factorization, rechecked after a fresh one
   double regularization = 0.0;  ///< ε of the accepted retry on M + εI, 0 if none
 };
 
