@@ -4,6 +4,7 @@
 #include <lcprelax/models/contact_step.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <string>
@@ -91,6 +92,21 @@ double perturbation_weight(std::uint64_t i, int seed) {
   return 0.5 + 0.5 * static_cast<double>(x >> 11) * 0x1.0p-53;
 }
 
+// ‖M‖∞: the largest absolute row sum.
+double matrix_inf_norm(const SparseMatrix& M) {
+  Vector row_sums = Vector::Zero(M.rows());
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
+  return M.rows() ? row_sums.maxCoeff() : 0.0;
+}
+
+// max|min(z, Mz + q)|, 0 for an empty LCP.
+double lcp_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
+  if (z.size() == 0) return 0.0;
+  const Vector w = lcp.M * z + lcp.q;
+  return z.cwiseMin(w).cwiseAbs().maxCoeff();
+}
+
 }  // namespace
 
 Vector lcp_perturbation_pattern(const ContactSystem& s, int seed) {
@@ -150,25 +166,30 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   std::deque<LemkeSolver> solvers;
   long pivots = 0;
   const LcpResult* r = nullptr;
-  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LcpResult& {
+  auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
+                        const std::vector<bool>* basis) -> const LcpResult& {
     solvers.emplace_back(ls);
-    solvers.back().setup(lcp.M, q);
+    solvers.back().setup(M, q);
     if (basis) solvers.back().warm_start(*basis);
     const LcpResult& res = solvers.back().solve();
     pivots += res.info.pivots;
     return res;
   };
+  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LcpResult& {
+    return attempt_on(lcp.M, ls, q, basis);
+  };
   auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
   auto perturbed = [&](double delta, int seed) {
     return Vector(lcp.q + delta * pattern(seed));
   };
-  // A solution of a perturbed q + δu, polished on q from its basis by a short crash path
-  // with the covering vector B·1, and where that fails along u (the homotopy from q + θu
-  // back to q): r when a polish solves q, else kept as the inexact fallback.
+  // A solution of a perturbed LCP (q + δu, or M + εI: seed < 0), polished on (M, q) from
+  // its basis by a short crash path with the covering vector B·1, and for q + δu where that
+  // fails along u (the homotopy from q + θu back to q): r when a polish solves the LCP, else
+  // kept as the inexact fallback.
   const LcpResult* inexact = nullptr;
   auto polish_on_q = [&](const LcpResult& rp, int seed) {
     const LcpResult* polished = &attempt(polish, lcp.q, &rp.z_basic);
-    if (!solved(polished)) {  // the homotopy along the perturbation (lcp_types.hpp)
+    if (!solved(polished) && seed >= 0) {  // the homotopy along the perturbation (lcp_types.hpp)
       LemkeSettings along = polish;
       along.crash_covering_from_basis = false;
       along.covering = pattern(seed);
@@ -202,13 +223,32 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   }
   // 4. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution.
-  bool from_perturbed = false;
+  bool from_perturbed = false, from_regularized = false;
   if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;
     from_perturbed = true;
   }
-  // 5. The caller's settings (covering-vector and M + εI retries), each solve capped as
+  // 5. No perturbed solution: M + εI from the all-w basis (strictly copositive, so its
+  //    LCP always has a solution and Lemke's path ends at one in exact arithmetic),
+  //    polished on (M, q), else the regularized solution (solved_inaccurate).
+  if (!solved(r)) {
+    SparseMatrix Me = lcp.M;
+    SparseMatrix I(n, n);
+    I.setIdentity();
+    Me += (kLcpRegularization * std::max(1.0, matrix_inf_norm(lcp.M))) * I;
+    LemkeSettings reg = plain;
+    reg.max_pivots = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
+    const LcpResult& rr = attempt_on(Me, reg, lcp.q, nullptr);
+    if (solved(&rr)) {
+      polish_on_q(rr, -1);
+      if (!solved(r) && inexact == &rr && lcp_residual(lcp, rr.z) <= kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>()) {
+        r = inexact;
+        from_regularized = true;
+      }
+    }
+  }
+  // 6. The caller's settings (covering-vector and M + εI retries), each solve capped as
   //    step 4 unless the caller set max_pivots (Lemke's own default of 50 per unknown, with
   //    its 4 retries, would allow about 250 pivots per unknown in this attempt alone).
   LemkeSettings last = settings;
@@ -216,10 +256,12 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   if (!solved(r)) r = &attempt(last, lcp.q, nullptr);
 
   ContactSolution out;
-  out.status = !solved(r) ? ContactStatus::failed : from_perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;
-  out.message = !solved(r)  ? "lcp: " + r->info.message
-                : from_perturbed ? std::string("solved on a perturbed q (polishing on q failed)")
-                            : r->info.message;
+  const bool inaccurate = from_perturbed || from_regularized;
+  out.status = !solved(r) ? ContactStatus::failed : inaccurate ? ContactStatus::solved_inaccurate : ContactStatus::solved;
+  out.message = !solved(r)        ? "lcp: " + r->info.message
+                : from_perturbed   ? std::string("solved on a perturbed q (polishing on q failed)")
+                : from_regularized ? std::string("solved on M + εI (polishing on M failed)")
+                                   : r->info.message;
   out.work = pivots;
   out.z_basic = r->z_basic;
   out.warm_started = pivots == 0 && r->info.warm_started;  // attempt 1 from its warm basis
@@ -228,8 +270,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     return out;
   }
   // Residual on the unperturbed LCP (a perturbed solution's is about δ·‖q‖∞ there).
-  const Vector w = lcp.M * r->z + lcp.q;
-  out.residual = n ? r->z.cwiseMin(w).cwiseAbs().maxCoeff() : 0.0;
+  out.residual = lcp_residual(lcp, r->z);
   out.lambda_n = r->z.head(nc);
   out.lambda_t = r->z.segment(nc, nf) - r->z.segment(nc + nf, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;

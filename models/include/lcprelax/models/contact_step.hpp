@@ -50,12 +50,25 @@
 //      kept (status solved_inaccurate): each contact may approach or slip at up to δ (m/s)
 //      unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes
 //      slip);
-//   4. Lemke with the caller's settings (covering-vector and M + εI retries; costly on
+//   4. when neither gave a solution: Lemke on M + εI, ε = kLcpRegularization·max(1, ‖M‖∞),
+//      from the all-w basis, at most kLcpRegularizedPivotsPerUnknown pivots per unknown,
+//      then the polish of step 2 on (M, q) from its basis; failing that, the regularized
+//      solution is kept (status solved_inaccurate) if its residual on the LCP (ε·‖z‖∞ at
+//      most: ε is a compliance in m/s per N·s, ODE's constraint force mixing) is at most
+//      kLcpRegularizedResidual·‖q‖∞: where the LCP has no solution (a learned q bias that
+//      pulls wedged contacts together) z grows like 1/ε and the step fails. Why: in a jammed
+//      pile, forces that cancel (Jᵀz = 0, z ≥ 0, on contacts with φ ≤ 0) make the LCP
+//      feasible only on the boundary (qᵀz = 0 exactly), and roundoff can make it
+//      infeasible: the cold paths on q and q + δu then end on rays (a 500-body pile, seed 2:
+//      every attempt above). M + εI is strictly copositive, so its LCP has a solution for
+//      every q (Cottle, Pang & Stone, "The Linear Complementarity Problem", 1992, §3.8);
+//   5. Lemke with the caller's settings (covering-vector and M + εI retries; costly on
 //      large islands), each solve capped at kLcpExactPivotsPerUnknown pivots per unknown
-//      unless settings.max_pivots is set. So every attempt is bounded: at most about 30
+//      unless settings.max_pivots is set. So every attempt is bounded: at most about 40
 //      pivots per unknown per island and step in all.
 //   ContactSolution::warm_started is set only when step 1 solved it (zero pivots).
-//   ContactSolution::residual is always that of the unperturbed LCP (≤ δ after step 2).
+//   ContactSolution::residual is always that of the unperturbed LCP (≤ δ after step 2,
+//   ≤ kLcpRegularizedResidual·‖q‖∞ after step 4).
 //
 // convex (two phases), by the interior-point QP:
 //   1. min_{λn ≥ 0} ½ λnᵀ Wnn λn + λnᵀ (Jn v* + max(φ,0)/Δt)             (no friction)
@@ -105,12 +118,23 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 1.0;
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
 constexpr long kLcpExactPivotsPerUnknown = 3;
 
+/// Relative regularization ε/max(1, ‖M‖∞) of step 4 above. On the 500-body pile of seed 2
+/// (5,916 unknowns, exported with `lcprelax pile --export-fc2d`) 1e-12 ended on a ray and
+/// 1e-10 on a singular basis; 1e-8 solved in 32,787 pivots (residual on the LCP 2.7e-6
+/// with ‖q‖∞ = 1 m/s), 1e-6 in 24,948 (residual 2.5e-4).
+constexpr double kLcpRegularization = 1e-8;
+/// Pivot cap per LCP unknown of step 4 (5.5 per unknown were needed above).
+constexpr double kLcpRegularizedPivotsPerUnknown = 8.0;
+/// Largest residual on the LCP, relative to ‖q‖∞, of a regularized solution that step 4
+/// keeps (2.6e-6 on the pile above): ten times the largest perturbation of step 2.
+constexpr double kLcpRegularizedResidual = 1e-4;
+
 /// The outcome of one island's contact solve.
 enum class ContactStatus {
   unsolved,           ///< not solved yet
   solved,             ///< the model's solve reached its tolerance (LCP residual, or QP eps)
   solved_inaccurate,  ///< usable, but outside the tolerance: the lcp model's solution on a
-                      ///< perturbed q (residual ≤ δ, above), or a QP phase solved_inaccurate
+                      ///< perturbed q (residual ≤ δ, above) or on M + εI, or a QP phase solved_inaccurate
   failed              ///< no solution of the model; the fields hold a fallback (see below)
 };
 
