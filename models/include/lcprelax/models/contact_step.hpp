@@ -119,9 +119,10 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 1.0;
 constexpr long kLcpExactPivotsPerUnknown = 3;
 
 /// Relative regularization ε/max(1, ‖M‖∞) of step 4 above. On the 500-body pile of seed 2
-/// (5,916 unknowns, exported with `lcprelax pile --export-fc2d`) 1e-12 ended on a ray and
-/// 1e-10 on a singular basis; 1e-8 solved in 32,787 pivots (residual on the LCP 2.7e-6
-/// with ‖q‖∞ = 1 m/s), 1e-6 in 24,948 (residual 2.5e-4).
+/// (5,916 unknowns, exported with `lcprelax pile --export-fc2d`; bench/README.md) 1e-12
+/// and 1e-10 ended on rays (after 5,832 and 46,622 pivots); 1e-8 solved in 32,787 pivots
+/// (residual on the LCP 2.7e-6 with ‖q‖∞ = 1 m/s), 1e-7 in 28,591 (2.5e-5); 1e-6 cycled to
+/// Lemke's pivot limit.
 constexpr double kLcpRegularization = 1e-8;
 /// Pivot cap per LCP unknown of step 4 (5.5 per unknown were needed above).
 constexpr double kLcpRegularizedPivotsPerUnknown = 8.0;
