@@ -146,7 +146,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     return u;
   };
   if (!s.ids.empty() && static_cast<Index>(s.ids.size()) != nc) (void)lcp_perturbation_pattern(s, 0);  // throws
-  // Attempts, cheapest first (contact_step.hpp). Lemke's own retries only in the last one;
+  // Attempts, cheapest first (contact_step.hpp, numbered as there). Lemke's own retries only in the last one;
   // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
   LemkeSettings plain = settings;
   plain.crash_flip_rounds = 0;  // block principal pivoting of crash bases: not measured on piles
@@ -200,28 +200,28 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   };
   // 1. The warm basis on q where it is feasible.
   if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
-  // 2. A crash path on the perturbed q from the warm basis, at most
+  // 1b. A crash path on the perturbed q from the warm basis, at most
   //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
-  //    step 3's first one: when the polish fails, its solution is kept as the inexact
-  //    fallback and step 3 does not solve the same perturbed LCP again from the all-w basis
+  //    step 2's first one: when the polish fails, its solution is kept as the inexact
+  //    fallback and step 2 does not solve the same perturbed LCP again from the all-w basis
   //    (it would end at the same basis and fail the same polish).
   double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
   if (has_warm && !solved(r)) {
     LemkeSettings warm_crash = plain;
     warm_crash.crash_start = true;
-    warm_crash.crash_cold_fallback = false;  // step 3 is the cold start
+    warm_crash.crash_cold_fallback = false;  // step 2 is the cold start
     warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
     const LcpResult& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
     if (solved(&rc)) polish_on_q(rc, 0);
   }
-  // 3. Perturbed q + δu from the all-w basis (capped as step 4), polished on q.
+  // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
   LemkeSettings cold = plain;
   cold.max_pivots = exact.max_pivots;
   for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
     const LcpResult& rp = attempt(cold, perturbed(delta, seed), nullptr);
     if (solved(&rp)) polish_on_q(rp, seed);
   }
-  // 4. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
+  // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution.
   bool from_perturbed = false, from_regularized = false;
   if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
@@ -229,7 +229,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     r = inexact;
     from_perturbed = true;
   }
-  // 5. No perturbed solution: M + εI from the all-w basis (strictly copositive, so its
+  // 4. No perturbed solution: M + εI from the all-w basis (strictly copositive, so its
   //    LCP always has a solution and Lemke's path ends at one in exact arithmetic),
   //    polished on (M, q), else the regularized solution (solved_inaccurate).
   if (!solved(r)) {
@@ -238,7 +238,8 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     I.setIdentity();
     Me += (kLcpRegularization * std::max(1.0, matrix_inf_norm(lcp.M))) * I;
     LemkeSettings reg = plain;
-    reg.max_pivots = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
+    const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
+    reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
     const LcpResult& rr = attempt_on(Me, reg, lcp.q, nullptr);
     if (solved(&rr)) {
       polish_on_q(rr, -1);
@@ -248,8 +249,8 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
       }
     }
   }
-  // 6. The caller's settings (covering-vector and M + εI retries), each solve capped as
-  //    step 4 unless the caller set max_pivots (Lemke's own default of 50 per unknown, with
+  // 5. The caller's settings (covering-vector and M + εI retries), each solve capped as
+  //    step 3 unless the caller set max_pivots (Lemke's own default of 50 per unknown, with
   //    its 4 retries, would allow about 250 pivots per unknown in this attempt alone).
   LemkeSettings last = settings;
   if (last.max_pivots == 0) last.max_pivots = exact_cap;
