@@ -136,7 +136,10 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   const Index n = lcp.q.size();
-  const bool has_warm = static_cast<Index>(warm.size()) == n;
+  // A warm basis without a basic z (every contact new, or the first step) is the all-w
+  // basis of the cold start: its crash path would repeat step 2's first cold path exactly.
+  const bool has_warm =
+      static_cast<Index>(warm.size()) == n && std::find(warm.begin(), warm.end(), true) != warm.end();
   // u of each seed (lcp_perturbation_pattern), built on first use: a step that the warm
   // basis solves needs none. The identities are checked up front all the same.
   std::vector<Vector> patterns(static_cast<std::size_t>(kLcpPerturbationSeeds));

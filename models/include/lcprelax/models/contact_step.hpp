@@ -21,7 +21,8 @@
 //   are more contact rows than degrees of freedom), and from a cold start Lemke then can
 //   end on a secondary ray or a singular basis by roundoff. solve_lcp_model therefore
 //   tries, cheapest first, with Lemke's own retries only in the last attempt:
-//   1. the warm basis (if given) where its basic solution on q is feasible (no pivots);
+//   1. the warm basis (if given and some z is basic in it: the all-w basis is step 2's cold
+//      start) where its basic solution on q is feasible (no pivots);
 //   1b. a crash path (LemkeSettings::crash_start) from the warm basis on the perturbed q of
 //      step 2 (first pattern), at most kLcpWarmCrashPivotsPerUnknown pivots per unknown,
 //      then the polish of step 2; if the crash path fails, step 2 runs as without a warm
