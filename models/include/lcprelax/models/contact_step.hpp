@@ -53,7 +53,7 @@
 //      slip);
 //   4. when neither gave a solution: Lemke on M + εI, ε = kLcpRegularization·max(1, ‖M‖∞),
 //      from the all-w basis, at most kLcpRegularizedPivotsPerUnknown pivots per unknown,
-//      then the polish of step 2 on (M, q) from its basis; failing that, the regularized
+//      then step 2's first polish (covering B·1) on (M, q) from its basis; failing that, the regularized
 //      solution is kept (status solved_inaccurate) if its residual on the LCP (ε·‖z‖∞ at
 //      most: ε is a compliance in m/s per N·s, ODE's constraint force mixing) is at most
 //      kLcpRegularizedResidual·‖q‖∞: where the LCP has no solution (a learned q bias that
@@ -62,7 +62,8 @@
 //      feasible only on the boundary (qᵀz = 0 exactly), and roundoff can make it
 //      infeasible: the cold paths on q and q + δu then end on rays (a 500-body pile, seed 2:
 //      every attempt above). M + εI is strictly copositive, so its LCP has a solution for
-//      every q (Cottle, Pang & Stone, "The Linear Complementarity Problem", 1992, §3.8);
+//      every q, and Lemke's path ends at one (Cottle, Pang & Stone, "The Linear
+//      Complementarity Problem", 1992, §3.8 and §4.4);
 //   5. Lemke with the caller's settings (covering-vector and M + εI retries; costly on
 //      large islands), each solve capped at kLcpExactPivotsPerUnknown pivots per unknown
 //      unless settings.max_pivots is set. So every attempt is bounded: at most about 40
