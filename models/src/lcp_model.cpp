@@ -4,7 +4,6 @@
 #include <lcprelax/models/contact_step.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <string>
@@ -90,14 +89,6 @@ double perturbation_weight(std::uint64_t i, int seed) {
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
   x ^= x >> 31;
   return 0.5 + 0.5 * static_cast<double>(x >> 11) * 0x1.0p-53;
-}
-
-// ‖M‖∞: the largest absolute row sum.
-double matrix_inf_norm(const SparseMatrix& M) {
-  Vector row_sums = Vector::Zero(M.rows());
-  for (Index j = 0; j < M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
-  return M.rows() ? row_sums.maxCoeff() : 0.0;
 }
 
 // max|min(z, Mz + q)|, 0 for an empty LCP.
@@ -239,15 +230,16 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     SparseMatrix Me = lcp.M;
     SparseMatrix I(n, n);
     I.setIdentity();
-    Me += (kLcpRegularization * std::max(1.0, matrix_inf_norm(lcp.M))) * I;
+    const double m_norm = (lcp.M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
+    Me += (kLcpRegularization * std::max(1.0, m_norm)) * I;
     LemkeSettings reg = plain;
     const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
     reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
     const LcpResult& rr = attempt_on(Me, reg, lcp.q, nullptr);
     if (solved(&rr)) {
-      polish_on_q(rr, -1);
-      if (!solved(r) && inexact == &rr && lcp_residual(lcp, rr.z) <= kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>()) {
-        r = inexact;
+      polish_on_q(rr, -1);  // sets r when the polish solves (M, q)
+      if (!solved(r) && lcp_residual(lcp, rr.z) <= kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>()) {
+        r = &rr;
         from_regularized = true;
       }
     }
