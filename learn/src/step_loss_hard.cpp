@@ -3,6 +3,7 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/learn/step_loss_hard.hpp>
+#include <lcprelax/models/lcp_model_attempts.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -86,46 +87,21 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
     return r;
   }
 
-  // Solve: the attempts of solve_lcp_model (header comment).
+  // Solve: the lcp model's attempts (models/lcp_model_attempts.hpp), as the simulator does.
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
-  const bool has_warm = static_cast<Index>(warm_basis.size()) == n;
-  LemkeSettings plain = settings.lemke;
-  plain.covering_retries = 0;
-  plain.regularization_retries = 0;
-  LemkeSettings warm_only = plain;
-  warm_only.max_pivots = 1;
-  std::vector<LemkeSolver> solvers;
-  solvers.reserve(2 * kLcpPerturbationSeeds + 3);
-  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> LemkeSolver& {
-    solvers.emplace_back(ls);
-    solvers.back().setup(lcp.M, q);
-    if (basis) solvers.back().warm_start(*basis);
-    r.work += solvers.back().solve().info.pivots;
-    return solvers.back();
-  };
-  auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
-  LemkeSolver* sol = &attempt(plain, lcp.q, has_warm ? &warm_basis : nullptr);
-  bool perturbed = false;
-  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
-  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(sol); ++seed, delta *= 10.0) {
-    const Vector q = lcp.q + delta * lcp_perturbation_pattern(s, seed);
-    LemkeSolver& rp = attempt(plain, q, has_warm ? &warm_basis : nullptr);
-    if (!solved(&rp)) continue;
-    const std::vector<bool> basis = rp.result().z_basic;
-    LemkeSolver& polished = attempt(warm_only, lcp.q, &basis);
-    perturbed = !solved(&polished);
-    sol = perturbed ? &rp : &polished;
-  }
-  if (!solved(sol)) sol = &attempt(settings.lemke, lcp.q, nullptr);
-  if (!solved(sol)) {
+  LcpModelAttempts attempts;
+  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts);
+  r.work = attempts.pivots;
+  const LemkeSolver* sol = attempts.used;
+  if (!has_solution(attempts.status)) {
     r.status = ContactStatus::failed;
-    r.message = "lcp: " + sol->result().info.message;
+    r.message = attempts.message;
     r.loss = std::numeric_limits<double>::quiet_NaN();
     r.v_next = s.v_star;
     return r;
   }
-  r.status = perturbed ? ContactStatus::solved_inaccurate : ContactStatus::solved;
-  if (perturbed) r.message = "solved on a perturbed q (polishing on q failed)";
+  r.status = attempts.status;
+  if (attempts.source != LcpModelSource::exact) r.message = attempts.message;
   const LcpResult& res = sol->result();
   if (final_basis) *final_basis = res.z_basic;
   const Vector ln = res.z.head(nc);

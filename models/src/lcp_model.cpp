@@ -2,10 +2,10 @@
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/lcp_model_attempts.hpp>
 
 #include <algorithm>
 #include <cstdint>
-#include <deque>
 #include <string>
 
 namespace lcprelax {
@@ -91,13 +91,6 @@ double perturbation_weight(std::uint64_t i, int seed) {
   return 0.5 + 0.5 * static_cast<double>(x >> 11) * 0x1.0p-53;
 }
 
-// max|min(z, Mz + q)|, 0 for an empty LCP.
-double lcp_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
-  if (z.size() == 0) return 0.0;
-  const Vector w = lcp.M * z + lcp.q;
-  return z.cwiseMin(w).cwiseAbs().maxCoeff();
-}
-
 }  // namespace
 
 Vector lcp_perturbation_pattern(const ContactSystem& s, int seed) {
@@ -126,149 +119,23 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
                                 const std::vector<bool>& warm) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
-  const Index n = lcp.q.size();
-  // A warm basis without a basic z (every contact new, or the first step) is the all-w
-  // basis of the cold start: its crash path would repeat step 2's first cold path exactly.
-  const bool has_warm =
-      static_cast<Index>(warm.size()) == n && std::find(warm.begin(), warm.end(), true) != warm.end();
-  // u of each seed (lcp_perturbation_pattern), built on first use: a step that the warm
-  // basis solves needs none. The identities are checked up front all the same.
-  std::vector<Vector> patterns(static_cast<std::size_t>(kLcpPerturbationSeeds));
-  auto pattern = [&](int seed) -> const Vector& {
-    Vector& u = patterns[static_cast<std::size_t>(seed)];
-    if (u.size() == 0 && n > 0) u = lcp_perturbation_pattern(s, seed);
-    return u;
-  };
-  if (!s.ids.empty() && static_cast<Index>(s.ids.size()) != nc) (void)lcp_perturbation_pattern(s, 0);  // throws
-  // Attempts, cheapest first (contact_step.hpp, numbered as there). Lemke's own retries only in the last one;
-  // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
-  LemkeSettings plain = settings;
-  plain.crash_flip_rounds = 0;  // block principal pivoting of crash bases: not measured on piles
-  plain.covering_retries = 0;
-  plain.regularization_retries = 0;
-  LemkeSettings exact = plain;  // attempt 1 fails fast (see kLcpExactPivotsPerUnknown)
-  const long exact_cap = kLcpExactPivotsPerUnknown * (n + 1);
-  exact.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, exact_cap) : exact_cap;
-  LemkeSettings polish = plain;  // from the perturbed solution's basis: a short crash path
-  polish.crash_start = true;
-  polish.max_pivots = std::max<long>(1, n / 10);
-  polish.crash_cold_fallback = false;  // a cold path capped at n/10 cannot finish (≈ n pivots)
-  LemkeSettings warm_only = plain;  // the warm basis if it is feasible; a cold start stops at once
-  warm_only.max_pivots = 1;
-  // Kept alive: r and inexact point into the results of earlier attempts. A deque never
-  // moves its elements on emplace_back, so adding an attempt cannot leave them dangling.
-  std::deque<LemkeSolver> solvers;
-  long pivots = 0;
-  const LcpResult* r = nullptr;
-  auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
-                        const std::vector<bool>* basis) -> const LcpResult& {
-    solvers.emplace_back(ls);
-    solvers.back().setup(M, q);
-    if (basis) solvers.back().warm_start(*basis);
-    const LcpResult& res = solvers.back().solve();
-    pivots += res.info.pivots;
-    return res;
-  };
-  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LcpResult& {
-    return attempt_on(lcp.M, ls, q, basis);
-  };
-  auto solved = [](const LcpResult* x) { return x && has_solution(x->info.status); };
-  auto perturbed = [&](double delta, int seed) {
-    return Vector(lcp.q + delta * pattern(seed));
-  };
-  // A solution of a perturbed LCP (q + δu, or M + εI: seed < 0), polished on (M, q) from
-  // its basis by a short crash path with the covering vector B·1, and for q + δu where that
-  // fails along u (the homotopy from q + θu back to q): r when a polish solves the LCP, else
-  // kept as the inexact fallback.
-  const LcpResult* inexact = nullptr;
-  auto polish_on_q = [&](const LcpResult& rp, int seed) {
-    const LcpResult* polished = &attempt(polish, lcp.q, &rp.z_basic);
-    if (!solved(polished) && seed >= 0) {  // the homotopy along the perturbation (lcp_types.hpp)
-      LemkeSettings along = polish;
-      along.crash_covering_from_basis = false;
-      along.covering = pattern(seed);
-      polished = &attempt(along, lcp.q, &rp.z_basic);
-    }
-    if (solved(polished)) r = polished;
-    else inexact = &rp;
-  };
-  // 1. The warm basis on q where it is feasible.
-  if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
-  // 1b. A crash path on the perturbed q from the warm basis, at most
-  //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
-  //    step 2's first one: when the polish fails, its solution is kept as the inexact
-  //    fallback and step 2 does not solve the same perturbed LCP again from the all-w basis
-  //    (it would end at the same basis and fail the same polish).
-  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
-  if (has_warm && !solved(r)) {
-    LemkeSettings warm_crash = plain;
-    warm_crash.crash_start = true;
-    warm_crash.crash_cold_fallback = false;  // step 2 is the cold start
-    warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
-    const LcpResult& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
-    if (solved(&rc)) polish_on_q(rc, 0);
-  }
-  // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
-  LemkeSettings cold = plain;
-  cold.max_pivots = exact.max_pivots;
-  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
-    const LcpResult& rp = attempt(cold, perturbed(delta, seed), nullptr);
-    if (solved(&rp)) polish_on_q(rp, seed);
-  }
-  // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
-  //    basis, or cycle: capped), else the perturbed solution.
-  bool from_perturbed = false, from_regularized = false;
-  if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
-  if (!solved(r) && inexact) {
-    r = inexact;
-    from_perturbed = true;
-  }
-  // 4. No perturbed solution: M + εI from the all-w basis (strictly copositive, so its
-  //    LCP always has a solution and Lemke's path ends at one in exact arithmetic),
-  //    polished on (M, q), else the regularized solution (solved_inaccurate).
-  if (!solved(r)) {
-    SparseMatrix Me = lcp.M;
-    SparseMatrix I(n, n);
-    I.setIdentity();
-    const double m_norm = (lcp.M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
-    Me += (kLcpRegularization * std::max(1.0, m_norm)) * I;
-    LemkeSettings reg = plain;
-    const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
-    reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
-    const LcpResult& rr = attempt_on(Me, reg, lcp.q, nullptr);
-    if (solved(&rr)) {
-      polish_on_q(rr, -1);  // sets r when the polish solves (M, q)
-      if (!solved(r) && lcp_residual(lcp, rr.z) <= kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>()) {
-        r = &rr;
-        from_regularized = true;
-      }
-    }
-  }
-  // 5. The caller's settings (covering-vector and M + εI retries), each solve capped as
-  //    step 3 unless the caller set max_pivots (Lemke's own default of 50 per unknown, with
-  //    its 4 retries, would allow about 250 pivots per unknown in this attempt alone).
-  LemkeSettings last = settings;
-  if (last.max_pivots == 0) last.max_pivots = exact_cap;
-  if (!solved(r)) r = &attempt(last, lcp.q, nullptr);
-
+  LcpModelAttempts a;
+  run_lcp_model_attempts(s, lcp, settings, warm, a);
+  const LcpResult& r = a.used->result();
   ContactSolution out;
-  const bool inaccurate = from_perturbed || from_regularized;
-  out.status = !solved(r) ? ContactStatus::failed : inaccurate ? ContactStatus::solved_inaccurate : ContactStatus::solved;
-  out.message = !solved(r)        ? "lcp: " + r->info.message
-                : from_perturbed   ? std::string("solved on a perturbed q (polishing on q failed)")
-                : from_regularized ? std::string("solved on M + εI (polishing on M failed)")
-                                   : r->info.message;
-  out.work = pivots;
-  out.z_basic = r->z_basic;
-  out.warm_started = pivots == 0 && r->info.warm_started;  // attempt 1 from its warm basis
+  out.status = a.status;
+  out.message = a.message;
+  out.work = a.pivots;
+  out.z_basic = r.z_basic;
+  out.warm_started = a.warm_started;
   if (!has_solution(out.status)) {
-    out.residual = r->info.complementarity;
+    out.residual = r.info.complementarity;
     return out;
   }
   // Residual on the unperturbed LCP (a perturbed solution's is about δ·‖q‖∞ there).
-  out.residual = lcp_residual(lcp, r->z);
-  out.lambda_n = r->z.head(nc);
-  out.lambda_t = r->z.segment(nc, nf) - r->z.segment(nc + nf, nf);
+  out.residual = stewart_trinkle_residual(lcp, r.z);
+  out.lambda_n = r.z.head(nc);
+  out.lambda_t = r.z.segment(nc, nf) - r.z.segment(nc + nf, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;
   out.v_next = s.v_star + s.minv.cwiseProduct(impulse);
   return out;

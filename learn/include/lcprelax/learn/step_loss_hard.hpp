@@ -6,15 +6,14 @@
 // models/contact_step.hpp (stewart_trinkle_lcp: W = J M⁻¹ Jᵀ, J = [Jn; Jt], gap term
 // max(φ, 0)/Δt), v⁺ = v* + M⁻¹(Jnᵀλn + Jtᵀλt), λt = β⁺ − β⁻, v̄ the observed next velocity.
 //
-// Solve: the sparse Lemke (lcp/lemke.hpp) with the attempts of solve_lcp_model: (1) plain
-// Lemke on q from the warm basis (if given), else cold; (2) up to kLcpPerturbationSeeds
-// perturbed q + δu (δ = kLcpPerturbation·‖q‖∞, ten times larger for each next pattern,
-// u = lcp_perturbation_pattern(s, seed), the simulator's, keyed by ContactSystem::ids),
-// whose basis is then tried on q ("polish");
-// (3) Lemke with the caller's settings (covering and M + εI retries). status: solved
-// (the LCP's own solution), solved_inaccurate (the solution of the perturbed LCP: loss and
-// gradient are those of q + δu with δu held fixed), failed (no solution: loss NaN, the
-// gradient zero and not meaningful).
+// Solve: the sparse Lemke (lcp/lemke.hpp) with the lcp model's attempts, the simulator's
+// (models/lcp_model_attempts.hpp; steps and caps in models/contact_step.hpp): the warm basis
+// (if given), a crash path from it, perturbed q + δu (δ = kLcpPerturbation·‖q‖∞, u =
+// lcp_perturbation_pattern(s, seed), keyed by ContactSystem::ids) polished on q, exact Lemke,
+// M + εI polished on M, and last Lemke with the caller's settings (covering and M + εI
+// retries). status: solved (the LCP's own solution), solved_inaccurate (the solution of the
+// perturbed LCP q + δu or of M + εI: loss and gradient are those of that LCP with δu and ε
+// held fixed), failed (no solution: loss NaN, the gradient zero and not meaningful).
 //
 // Gradient (reverse mode). With g = 2(v⁺ − v̄), a = M⁻¹g:
 //   ∂ℓ/∂z through v⁺: ∂ℓ/∂λn = Jn a, ∂ℓ/∂β± = ±Jt a, ∂ℓ/∂γ = 0;

@@ -1,0 +1,48 @@
+#pragma once
+// The attempts of the lcp model on one island's Stewart–Trinkle LCP (steps 1–5 of
+// contact_step.hpp, cheapest first, each capped), with every LemkeSolver kept alive, so
+// that the one whose solution is the answer can differentiate it (LemkeSolver::backward).
+// solve_lcp_model (the simulator) and the hard loss (learn/step_loss_hard.hpp) both run
+// them: a step that the simulator solves, the hard loss solves with the same basis.
+//
+// Which LCP `used` solved (LcpModelAttempts::source):
+//   exact        (M, q): status solved, residual at Lemke's tolerance;
+//   perturbed    (M, q + δu), step 3's fallback: status solved_inaccurate;
+//   regularized  (M + εI, q), step 4's fallback: status solved_inaccurate.
+// used->backward() differentiates that LCP with δu and ε held fixed.
+#include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/models/contact_step.hpp>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace lcprelax {
+
+enum class LcpModelSource { exact, perturbed, regularized };
+
+struct LcpModelAttempts {
+  std::deque<LemkeSolver> solvers;     ///< every attempt in order (a deque: never relocated)
+  const LemkeSolver* used = nullptr;   ///< the answer's solver (the last attempt when none solved)
+  LcpModelSource source = LcpModelSource::exact;
+  ContactStatus status = ContactStatus::unsolved;
+  std::string message;                 ///< Lemke's message, or why the answer is inaccurate
+  long pivots = 0;                     ///< summed over the attempts
+  bool warm_started = false;           ///< step 1: the warm basis solved it in zero pivots
+
+  LcpModelAttempts() = default;
+  LcpModelAttempts(const LcpModelAttempts&) = delete;  // `used` points into `solvers`
+  LcpModelAttempts& operator=(const LcpModelAttempts&) = delete;
+};
+
+/// Runs the attempts on `lcp` (= stewart_trinkle_lcp(s, ...)) into `out` (cleared first).
+/// `settings` are the caller's (step 5; the earlier steps run them without Lemke's own
+/// retries); `warm` (size nc + 3nf, or empty) is the previous basis. s supplies the
+/// contact identities of the perturbation patterns (lcp_perturbation_pattern).
+void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
+                            const std::vector<bool>& warm, LcpModelAttempts& out);
+
+/// max_i |min(z_i, (M z + q)_i)| on the unperturbed LCP, 0 for an empty one.
+double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z);
+
+}  // namespace lcprelax

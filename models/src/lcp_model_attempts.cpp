@@ -1,0 +1,157 @@
+// The lcp model's attempts on one island's LCP (lcp_model_attempts.hpp; the steps, their
+// caps and why: contact_step.hpp).
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/models/lcp_model_attempts.hpp>
+
+#include <algorithm>
+
+namespace lcprelax {
+
+double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
+  if (z.size() == 0) return 0.0;
+  const Vector w = lcp.M * z + lcp.q;
+  return z.cwiseMin(w).cwiseAbs().maxCoeff();
+}
+
+void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
+                            const std::vector<bool>& warm, LcpModelAttempts& out) {
+  out.solvers.clear();
+  out.used = nullptr;
+  out.source = LcpModelSource::exact;
+  out.status = ContactStatus::unsolved;
+  out.message.clear();
+  out.pivots = 0;
+  out.warm_started = false;
+  const Index nc = s.num_contacts(), n = lcp.q.size();
+  if (lcp.M.rows() != n || lcp.M.cols() != n || n != nc + 3 * s.num_friction())
+    throw InputError("lcp model: the LCP's size does not match the contact system's nc + 3nf");
+  // A warm basis without a basic z (every contact new, or the first step) is the all-w
+  // basis of the cold start: its crash path would repeat step 2's first cold path exactly.
+  const bool has_warm =
+      static_cast<Index>(warm.size()) == n && std::find(warm.begin(), warm.end(), true) != warm.end();
+  // u of each seed (lcp_perturbation_pattern), built on first use: a step that the warm
+  // basis solves needs none. The identities are checked up front all the same.
+  std::vector<Vector> patterns(static_cast<std::size_t>(kLcpPerturbationSeeds));
+  auto pattern = [&](int seed) -> const Vector& {
+    Vector& u = patterns[static_cast<std::size_t>(seed)];
+    if (u.size() == 0 && n > 0) u = lcp_perturbation_pattern(s, seed);
+    return u;
+  };
+  if (!s.ids.empty() && static_cast<Index>(s.ids.size()) != nc) (void)lcp_perturbation_pattern(s, 0);  // throws
+  // Attempts, cheapest first (contact_step.hpp, numbered as there). Lemke's own retries only in the last one;
+  // a solver with max_pivots = 1 tries its warm basis only (a cold start stops at once).
+  LemkeSettings plain = settings;
+  plain.crash_flip_rounds = 0;  // block principal pivoting of the warm basis: no pivot saved on a 300-body pile
+  plain.covering_retries = 0;
+  plain.regularization_retries = 0;
+  LemkeSettings exact = plain;  // attempt 1 fails fast (see kLcpExactPivotsPerUnknown)
+  const long exact_cap = kLcpExactPivotsPerUnknown * (n + 1);
+  exact.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, exact_cap) : exact_cap;
+  LemkeSettings polish = plain;  // from the perturbed solution's basis: a short crash path
+  polish.crash_start = true;
+  polish.max_pivots = std::max<long>(1, n / 10);
+  polish.crash_cold_fallback = false;  // a cold path capped at n/10 cannot finish (≈ n pivots)
+  LemkeSettings warm_only = plain;  // the warm basis if it is feasible; a cold start stops at once
+  warm_only.max_pivots = 1;
+  // r and inexact point into out.solvers (a deque never relocates its elements).
+  const LemkeSolver* r = nullptr;
+  auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
+                        const std::vector<bool>* basis) -> const LemkeSolver& {
+    LemkeSolver& solver = out.solvers.emplace_back(ls);
+    solver.setup(M, q);
+    if (basis) solver.warm_start(*basis);
+    out.pivots += solver.solve().info.pivots;
+    return solver;
+  };
+  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LemkeSolver& {
+    return attempt_on(lcp.M, ls, q, basis);
+  };
+  auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
+  auto perturbed = [&](double delta, int seed) { return Vector(lcp.q + delta * pattern(seed)); };
+  // A solution of a perturbed LCP (q + δu, or M + εI: seed < 0), polished on (M, q) from
+  // its basis by a short crash path with the covering vector B·1, and for q + δu where that
+  // fails along u (the homotopy from q + θu back to q): r when a polish solves the LCP, else
+  // kept as the inexact fallback.
+  const LemkeSolver* inexact = nullptr;
+  auto polish_on_q = [&](const LemkeSolver& rp, int seed) {
+    const LemkeSolver* polished = &attempt(polish, lcp.q, &rp.result().z_basic);
+    if (!solved(polished) && seed >= 0) {  // the homotopy along the perturbation (lcp_types.hpp)
+      LemkeSettings along = polish;
+      along.crash_covering_from_basis = false;
+      along.covering = pattern(seed);
+      polished = &attempt(along, lcp.q, &rp.result().z_basic);
+    }
+    if (solved(polished)) r = polished;
+    else inexact = &rp;
+  };
+  // 1. The warm basis on q where it is feasible.
+  if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
+  // 1b. A crash path on the perturbed q from the warm basis, at most
+  //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
+  //    step 2's first one: when the polish fails, its solution is kept as the inexact
+  //    fallback and step 2 does not solve the same perturbed LCP again from the all-w basis
+  //    (it would end at the same basis and fail the same polish).
+  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
+  if (has_warm && !solved(r)) {
+    LemkeSettings warm_crash = plain;
+    warm_crash.crash_start = true;
+    warm_crash.crash_cold_fallback = false;  // step 2 is the cold start
+    warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
+    const LemkeSolver& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
+    if (solved(&rc)) polish_on_q(rc, 0);
+  }
+  // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
+  LemkeSettings cold = plain;
+  cold.max_pivots = exact.max_pivots;
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
+    const LemkeSolver& rp = attempt(cold, perturbed(delta, seed), nullptr);
+    if (solved(&rp)) polish_on_q(rp, seed);
+  }
+  // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
+  //    basis, or cycle: capped), else the perturbed solution.
+  if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
+  if (!solved(r) && inexact) {
+    r = inexact;
+    out.source = LcpModelSource::perturbed;
+  }
+  // 4. No perturbed solution: M + εI from the all-w basis (strictly copositive, so its
+  //    LCP always has a solution and Lemke's path ends at one in exact arithmetic),
+  //    polished on (M, q), else the regularized solution (solved_inaccurate).
+  if (!solved(r)) {
+    SparseMatrix Me = lcp.M;
+    SparseMatrix I(n, n);
+    I.setIdentity();
+    const double m_norm = (lcp.M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
+    Me += (kLcpRegularization * std::max(1.0, m_norm)) * I;
+    LemkeSettings reg = plain;
+    const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
+    reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
+    const LemkeSolver& rr = attempt_on(Me, reg, lcp.q, nullptr);
+    if (solved(&rr)) {
+      polish_on_q(rr, -1);  // sets r when the polish solves (M, q)
+      if (!solved(r) &&
+          stewart_trinkle_residual(lcp, rr.result().z) <= kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>()) {
+        r = &rr;
+        out.source = LcpModelSource::regularized;
+      }
+    }
+  }
+  // 5. The caller's settings (covering-vector and M + εI retries), each solve capped as
+  //    step 3 unless the caller set max_pivots (Lemke's own default of 50 per unknown, with
+  //    its 4 retries, would allow about 250 pivots per unknown in this attempt alone).
+  LemkeSettings last = settings;
+  if (last.max_pivots == 0) last.max_pivots = exact_cap;
+  if (!solved(r)) r = &attempt(last, lcp.q, nullptr);
+
+  out.used = r;
+  const LcpInfo& info = r->result().info;
+  const bool inaccurate = out.source != LcpModelSource::exact;
+  out.status = !solved(r) ? ContactStatus::failed : inaccurate ? ContactStatus::solved_inaccurate : ContactStatus::solved;
+  out.message = !solved(r) ? "lcp: " + info.message
+                : out.source == LcpModelSource::perturbed   ? std::string("solved on a perturbed q (polishing on q failed)")
+                : out.source == LcpModelSource::regularized ? std::string("solved on M + εI (polishing on M failed)")
+                                                            : info.message;
+  out.warm_started = out.pivots == 0 && info.warm_started;  // attempt 1 from its warm basis
+}
+
+}  // namespace lcprelax
