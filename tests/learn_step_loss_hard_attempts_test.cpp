@@ -3,16 +3,15 @@
 // where only the regularized attempt M + εI (step 4 of contact_step.hpp) gives one, with
 // a gradient that matches central differences of that regularized LCP's loss.
 //
-// Scene (as tests/models_lcp_regularized_test.cpp): a 0.1 m box (10 kg) wedged 0.1 mm into
+// Scene (tests/lcp_wedge_support.hpp): a 0.1 m box (10 kg) wedged 0.1 mm into
 // two walls, with a per-contact q bias b = −1e-6 m/s on the normal rows (world.hpp
 // ContactLcpBlock): the LCP has no solution, every path on M ends on a ray, and the
 // solution on M + εI is kept as solved_inaccurate.
-#include <lcprelax/contact/collision.hpp>
 #include <lcprelax/learn/step_loss_hard.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/contact_system.hpp>
 
-#include "dynamics_support.hpp"
+#include "lcp_wedge_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,17 +24,7 @@ namespace {
 constexpr double kDt = 1e-2;
 
 ContactSystem wedged_box(double bias, double mu = 0.5) {
-  World world;
-  world.bodies.push_back(test::box(0.1, 0.1, 10.0, Vec3(0.0, 1.0, 0.0)));
-  world.half_planes.push_back(HalfPlane{Vec2(1.0, 0.0), -0.0499, 0});   // solid x < −0.0499
-  world.half_planes.push_back(HalfPlane{Vec2(-1.0, 0.0), -0.0499, 0});  // solid x > 0.0499
-  world.friction.default_mu = mu;
-  world.lcp_block.enabled = true;
-  world.lcp_block.q = Vec4(bias, 0.0, 0.0, 0.0);
-  const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{1e-2});
-  const std::vector<Island> islands = find_islands(world, contacts);
-  EXPECT_EQ(islands.size(), 1u);
-  return assemble_contact_system(world, contacts, islands.front(), kDt);
+  return test::wedged_box_system(bias, mu, kDt);
 }
 
 Vector target_of(const ContactSystem& s) {

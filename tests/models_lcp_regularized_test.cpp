@@ -16,11 +16,10 @@
 //   solved_inaccurate from M + εI;
 // - b = −1e-3 m/s: beyond the bound, failed;
 // - b = 0: Lemke solves the LCP itself (status solved).
-#include <lcprelax/contact/collision.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/contact_system.hpp>
 
-#include "dynamics_support.hpp"
+#include "lcp_wedge_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -32,17 +31,7 @@ namespace {
 constexpr double kDt = 1e-2;
 
 ContactSystem wedged_box(double bias) {
-  World world;
-  world.bodies.push_back(test::box(0.1, 0.1, 10.0, Vec3(0.0, 1.0, 0.0)));
-  world.half_planes.push_back(HalfPlane{Vec2(1.0, 0.0), -0.0499, 0});   // solid x < −0.0499
-  world.half_planes.push_back(HalfPlane{Vec2(-1.0, 0.0), -0.0499, 0});  // solid x > 0.0499
-  world.friction.default_mu = 0.5;
-  world.lcp_block.enabled = bias != 0.0;
-  world.lcp_block.q = Vec4(bias, 0.0, 0.0, 0.0);
-  const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{1e-2});
-  const std::vector<Island> islands = find_islands(world, contacts);
-  EXPECT_EQ(islands.size(), 1u);
-  return assemble_contact_system(world, contacts, islands.front(), kDt);
+  return test::wedged_box_system(bias, 0.5, kDt);
 }
 
 double q_norm(const ContactSystem& s) {

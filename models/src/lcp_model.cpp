@@ -1,10 +1,8 @@
 // The Stewart–Trinkle LCP contact model (contact_step.hpp).
 #include <lcprelax/core/errors.hpp>
-#include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/lcp_model_attempts.hpp>
 
-#include <algorithm>
 #include <cstdint>
 #include <string>
 
