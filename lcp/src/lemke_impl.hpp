@@ -68,6 +68,9 @@ struct LemkeSolver::Impl {
   /// settings' d, not B·1); a negative basic value elsewhere ends it with numerical_error.
   void pivot_from_current_basis(bool covered_rows_only = false);
   bool entering_candidates(Index entering);
+  bool drop_vanished_z0(Index entering);
+  // |z₀|·‖d‖∞ (normalized units, ‖q‖∞ = 1) below which a ray tries drop_vanished_z0.
+  static constexpr double kVanishedZ0 = 1e-6;
   Index lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0);
 
   // lemke_crash.cpp

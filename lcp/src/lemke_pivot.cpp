@@ -4,6 +4,7 @@
 #include "lemke_impl.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lcprelax {
 
@@ -120,9 +121,50 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
       if (!refactor(xB)) return finish(LcpStatus::numerical_error, "basis became singular");
       entering_candidates(entering);
     }
-    if (rows.empty()) return finish(LcpStatus::ray_termination, "ray termination: no solution found by Lemke");
+    if (rows.empty()) {
+      if (drop_vanished_z0(entering)) return;
+      return finish(LcpStatus::ray_termination, "ray termination: no solution found by Lemke");
+    }
     r = lexicographic_row(a, xB, true);
   }
+}
+
+// A ray met with z₀ already at zero (to roundoff): the almost-complementary basis then
+// holds a solution of the LCP to within d·z₀ (w = Mz + q + d·z₀), and pivoting z₀ out of its
+// row (a degenerate pivot: the point does not move) gives a complementary basis of it.
+// `entering` (a = B⁻¹ of its column) or else the variable that just left takes z₀'s row when
+// its entry there is above the pivot tolerance; the solution from a fresh factorization is
+// accepted only through extract_solution's residual check. Cost: one factorization; false
+// (basis changed, status not solved) when it does not solve.
+// Measured on a 300-body pile (run_pile_scaling --sizes 300 --models lcp --steps 13
+// --warmup 0 --seed 3): 6 crash-path rays with |z₀| ≤ 1.2e-8, at pivots 110–217. In one,
+// z₀ is pivoted out and the island is solved (the step's cold fallback, ~1.6 pivots per
+// unknown, is saved: 8,447 → 6,212 pivots per step over the window). In the other five
+// neither of the pair has an entry in z₀'s row (the column lies in the span of the other
+// basic columns: every complementary basis at that point is singular); they stay rays.
+bool LemkeSolver::Impl::drop_vanished_z0(Index entering) {
+  Index k0 = -1;
+  for (Index k = 0; k < n; ++k)
+    if (basic[k] == z0()) k0 = k;
+  if (k0 < 0 || std::abs(xB(k0)) * d.lpNorm<Eigen::Infinity>() > kVanishedZ0) return false;
+  Index var = entering;
+  if (std::abs(a(k0)) <= tol) {
+    var = complement(entering, n);
+    basis->solve_column(var, a);
+    if (!a.allFinite() || std::abs(a(k0)) <= tol) return false;
+  }
+  basis->replace(k0, a);
+  factor_current = false;
+  if (pivot_trace) {
+    pivot_trace->push_back(var);
+    pivot_trace->push_back(z0());
+  }
+  basic[k0] = var;
+  ++result.info.pivots;
+  extract_solution();
+  if (result.info.status != LcpStatus::solved) return false;
+  result.info.message = "solved (z0 vanished at a ray: the almost-complementary basis, z0 pivoted out)";
+  return true;
 }
 
 }  // namespace lcprelax
