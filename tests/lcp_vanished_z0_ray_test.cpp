@@ -12,7 +12,8 @@
 // - ε = 1e-12 (below the residual tolerance 1e-9·‖q‖∞): solved, with the message naming the
 //   vanished z₀, complementarity ≤ 1e-9 (recomputed here), z = (1, 0) to 1e-11;
 // - ε = 1e-3 (z₀ not small): no solution is claimed (the residual would be 1e-3); the status
-//   is not solved;
+//   is not solved and z is empty;
+// - ε = 1e-7: the exit is tried and its solution (residual 1e-7) refused: a ray, no z;
 // - a cold-started P-matrix LCP never reaches the case (its message is plain "solved").
 #include <lcprelax/lcp/lemke.hpp>
 
@@ -81,6 +82,23 @@ TEST(VanishedZ0Ray, LargeZ0AtTheRayIsStillARay) {
   const LcpResult& r = solver.solve();
   EXPECT_NE(r.info.status, LcpStatus::solved) << r.info.message;
   EXPECT_EQ(r.info.message.find("z0 vanished"), std::string::npos) << r.info.message;
+  EXPECT_EQ(r.z.size(), 0) << "a failed solve returns no z";
+}
+
+// ε = 1e-7: small enough for the exit to be tried (|z₀|·‖d‖∞ ≤ 1e-6), but its solution's
+// residual, 1e-7, is above the tolerance: the residual check refuses it and the ray stands,
+// with no z of the refused exit left in the result.
+TEST(VanishedZ0Ray, ExitAboveTheResidualToleranceIsRefused) {
+  const HandBuiltRay p = hand_built_ray(1e-7);
+  LemkeSolver solver(crash_only());
+  solver.setup(p.M, p.q);
+  solver.warm_start(kWarm);
+  const LcpResult& r = solver.solve();
+  EXPECT_EQ(r.info.status, LcpStatus::ray_termination) << r.info.message;
+  EXPECT_EQ(r.z.size(), 0);
+  EXPECT_EQ(r.w.size(), 0);
+  EXPECT_TRUE(r.z_basic.empty());
+  EXPECT_TRUE(std::isnan(r.info.complementarity));
 }
 
 TEST(VanishedZ0Ray, ColdPMatrixSolveNeverTakesThisExit) {

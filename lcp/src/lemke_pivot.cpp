@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lcprelax {
 
@@ -162,7 +163,16 @@ bool LemkeSolver::Impl::drop_vanished_z0(Index entering) {
   basic[k0] = var;
   ++result.info.pivots;
   extract_solution();
-  if (result.info.status != LcpStatus::solved) return false;
+  if (result.info.status != LcpStatus::solved) {
+    // The ray stands: the failed exit leaves no z, w or residual in the result.
+    if (z_spare.size() == 0) result.z.swap(z_spare);
+    if (w_spare.size() == 0) result.w.swap(w_spare);
+    result.z.resize(0);
+    result.w.resize(0);
+    result.z_basic.clear();
+    result.info.complementarity = std::numeric_limits<double>::quiet_NaN();
+    return false;
+  }
   result.info.message = "solved (z0 vanished at a ray: the almost-complementary basis, z0 pivoted out)";
   return true;
 }
