@@ -52,14 +52,17 @@ LemkeSettings crash_only() {
   return s;
 }
 
-const std::vector<bool> kWarm = {true, false};
+// The crash-started solve of p from {z₁, w₂}; the result lives in `solver`.
+const LcpResult& crash_solve(LemkeSolver& solver, const HandBuiltRay& p) {
+  solver.setup(p.M, p.q);
+  solver.warm_start({true, false});
+  return solver.solve();
+}
 
 TEST(VanishedZ0Ray, TinyZ0AtTheRayIsPivotedOutAndSolves) {
   const HandBuiltRay p = hand_built_ray(1e-12);
   LemkeSolver solver(crash_only());
-  solver.setup(p.M, p.q);
-  solver.warm_start(kWarm);
-  const LcpResult& r = solver.solve();
+  const LcpResult& r = crash_solve(solver, p);
   ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
   EXPECT_NE(r.info.message.find("z0 vanished"), std::string::npos) << r.info.message;
   EXPECT_TRUE(r.info.crash_started);
@@ -77,9 +80,7 @@ TEST(VanishedZ0Ray, TinyZ0AtTheRayIsPivotedOutAndSolves) {
 TEST(VanishedZ0Ray, LargeZ0AtTheRayIsStillARay) {
   const HandBuiltRay p = hand_built_ray(1e-3);
   LemkeSolver solver(crash_only());
-  solver.setup(p.M, p.q);
-  solver.warm_start(kWarm);
-  const LcpResult& r = solver.solve();
+  const LcpResult& r = crash_solve(solver, p);
   EXPECT_NE(r.info.status, LcpStatus::solved) << r.info.message;
   EXPECT_EQ(r.info.message.find("z0 vanished"), std::string::npos) << r.info.message;
   EXPECT_EQ(r.z.size(), 0) << "a failed solve returns no z";
@@ -91,9 +92,7 @@ TEST(VanishedZ0Ray, LargeZ0AtTheRayIsStillARay) {
 TEST(VanishedZ0Ray, ExitAboveTheResidualToleranceIsRefused) {
   const HandBuiltRay p = hand_built_ray(1e-7);
   LemkeSolver solver(crash_only());
-  solver.setup(p.M, p.q);
-  solver.warm_start(kWarm);
-  const LcpResult& r = solver.solve();
+  const LcpResult& r = crash_solve(solver, p);
   EXPECT_EQ(r.info.status, LcpStatus::ray_termination) << r.info.message;
   EXPECT_EQ(r.z.size(), 0);
   EXPECT_EQ(r.w.size(), 0);

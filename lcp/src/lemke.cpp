@@ -52,18 +52,23 @@ void LemkeSolver::Impl::allocate() {
   result.z_basic.reserve(static_cast<std::size_t>(n));
 }
 
-// Result fields back to "unsolved", keeping the storage of z, w, z_basic and message
-// (z and w become empty: their storage is parked in z_spare / w_spare).
-void LemkeSolver::Impl::reset_result() {
+// No z, w, z_basic or residual in the result; z and w become empty, their storage parked
+// in z_spare / w_spare.
+void LemkeSolver::Impl::discard_solution() {
   if (z_spare.size() == 0) result.z.swap(z_spare);
   if (w_spare.size() == 0) result.w.swap(w_spare);
   result.z.resize(0);
   result.w.resize(0);
   result.z_basic.clear();
+  result.info.complementarity = std::numeric_limits<double>::quiet_NaN();
+}
+
+// Result fields back to "unsolved", keeping the storage of z, w, z_basic and message.
+void LemkeSolver::Impl::reset_result() {
+  discard_solution();
   result.info.status = LcpStatus::unsolved;
   result.info.message.clear();
   result.info.pivots = 0;
-  result.info.complementarity = std::numeric_limits<double>::quiet_NaN();
   result.info.seconds = 0.0;
   result.info.warm_started = false;
   result.info.crash_started = false;

@@ -55,6 +55,7 @@ struct LemkeSolver::Impl {
   void set_q(const Vector& q_in);
   void allocate();
   void reset_result();
+  void discard_solution();
   void take(Vector& v, Vector& spare) const;
   bool refactor(Vector& x);
   void finish(LcpStatus status, const char* message) {

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace lcprelax {
 
@@ -136,11 +135,11 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
 // `entering` (a = B⁻¹ of its column) or else the variable that just left takes z₀'s row when
 // its entry there is above the pivot tolerance; the solution from a fresh factorization is
 // accepted only through extract_solution's residual check. Cost: one factorization; false
-// (basis changed, status not solved) when it does not solve.
+// (basis changed, no solution left in the result) when it does not solve.
 // Measured on a 300-body pile (run_pile_scaling --sizes 300 --models lcp --steps 13
 // --warmup 0 --seed 3): 6 crash-path rays with |z₀| ≤ 1.2e-8, at pivots 110–217. In one,
-// z₀ is pivoted out and the island is solved (the step's cold fallback, ~1.6 pivots per
-// unknown, is saved: 8,447 → 6,212 pivots per step over the window). In the other five
+// z₀ is pivoted out and the island is solved, which saves the step's cold fallback (~1.6
+// pivots per unknown; bench/results/lemke_vanished_z0.txt). In the other five
 // neither of the pair has an entry in z₀'s row (the column lies in the span of the other
 // basic columns: every complementary basis at that point is singular); they stay rays.
 bool LemkeSolver::Impl::drop_vanished_z0(Index entering) {
@@ -164,13 +163,7 @@ bool LemkeSolver::Impl::drop_vanished_z0(Index entering) {
   ++result.info.pivots;
   extract_solution();
   if (result.info.status != LcpStatus::solved) {
-    // The ray stands: the failed exit leaves no z, w or residual in the result.
-    if (z_spare.size() == 0) result.z.swap(z_spare);
-    if (w_spare.size() == 0) result.w.swap(w_spare);
-    result.z.resize(0);
-    result.w.resize(0);
-    result.z_basic.clear();
-    result.info.complementarity = std::numeric_limits<double>::quiet_NaN();
+    discard_solution();  // the ray stands: the refused exit leaves no z, w or residual
     return false;
   }
   result.info.message = "solved (z0 vanished at a ray: the almost-complementary basis, z0 pivoted out)";
