@@ -288,6 +288,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   j["failed_islands"] = st.failed_islands;
   j["cold_contacts"] = st.cold_contacts;
   j["proximal_solves"] = st.proximal_solves;
+  j["solver_work"] = st.solver_work;
   j["failed"] = final_eval.failed;
   const bool failed = final_eval.failed * 20 > static_cast<int>(training.size());
   if (o.json) {

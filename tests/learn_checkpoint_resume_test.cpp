@@ -2,9 +2,10 @@
 // behaviour: N epochs uninterrupted and k epochs with a checkpoint followed by a resume to N
 // (each part with a FRESH objective and θ, as a new process would have) end with bitwise
 // equal parameters (memcmp), equal epoch losses and the same stop reason, for the block
-// (hard, relaxed with QP warm starts, convex), polygon (hard, relaxed) and scene (relaxed,
-// with its proximal centres) learning problems, with mini-batches and Adam or SGD, and with
-// another thread count on the resumed part (the reduction is in a fixed order, batch.hpp).
+// (hard, relaxed with QP warm starts, convex), polygon (hard, relaxed) and scene (relaxed
+// with its proximal centres, hard with its stored Lemke bases) learning problems, with
+// mini-batches and Adam or SGD, and with another thread count on the resumed part (the
+// reduction is in a fixed order, batch.hpp).
 // A run resumed at its end (converged) stays as it was. A checkpoint of another problem
 // (other parameter count, other seed, other training set) is rejected with a message naming
 // the field; the CSV log of a resumed run equals the uninterrupted one's apart from times.
@@ -165,7 +166,9 @@ TEST(LearnCheckpointResume, PolygonHardAndRelaxedAreBitwise) {
   }
 }
 
-TEST(LearnCheckpointResume, SceneRelaxedWithProximalCentresIsBitwise) {
+// Relaxed with its proximal centres, hard with its stored Lemke bases (both saved in the
+// checkpoint as the scene's per-contact values).
+TEST(LearnCheckpointResume, SceneRelaxedAndHardWithStoredValuesAreBitwise) {
   LearningPileOptions po;
   po.bodies = 6;
   po.classes = 2;
@@ -173,16 +176,19 @@ TEST(LearnCheckpointResume, SceneRelaxedWithProximalCentresIsBitwise) {
   ds.steps = 25;
   const auto data = std::make_shared<SceneDataset>(generate_scene_dataset(make_learning_pile(po), ds));
   const auto map = std::make_shared<SceneParameterMap>(data->scene.world, SceneParameterSettings{});
-  SceneLossSettings ls;
-  ls.method = LossMethod::relaxed;
-  Problem p;
-  p.objective = [data, map, ls] { return std::make_unique<SceneObjective>(*data, *map, ls); };
-  p.theta = perturb_scene_parameters(map->parameters(data->scene.world), *map, 0.2, 3);
-  split_samples(static_cast<Index>(data->transitions.size()), 0.2, 1, p.training, p.validation);
-  TrainSettings ts = mini_batch_adam();
-  ts.batch = 8;
-  ts.optimizer.learning_rate = 0.01;
-  expect_resume_is_bitwise(p, ts, 4, {1, 3}, 2);
+  for (LossMethod method : {LossMethod::relaxed, LossMethod::hard}) {
+    SCOPED_TRACE(to_string(method));
+    SceneLossSettings ls;
+    ls.method = method;
+    Problem p;
+    p.objective = [data, map, ls] { return std::make_unique<SceneObjective>(*data, *map, ls); };
+    p.theta = perturb_scene_parameters(map->parameters(data->scene.world), *map, 0.2, 3);
+    split_samples(static_cast<Index>(data->transitions.size()), 0.2, 1, p.training, p.validation);
+    TrainSettings ts = mini_batch_adam();
+    ts.batch = 8;
+    ts.optimizer.learning_rate = 0.01;
+    expect_resume_is_bitwise(p, ts, 4, {1, 3}, 2);
+  }
 }
 
 TEST(LearnCheckpointResume, FinishedRunResumesToTheSameResult) {

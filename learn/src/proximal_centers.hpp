@@ -1,7 +1,8 @@
 #pragma once
-// The relaxed step loss's proximal centres of one transition (step_loss_relaxed.hpp), kept
-// between evaluations and matched CONTACT BY CONTACT: a learned vertex or μ changes which
-// contacts the speculative margin admits, how islands split and the order of their rows, so
+// Values per contact of one transition, kept between evaluations: the relaxed step loss's
+// proximal centres (step_loss_relaxed.hpp), or the hard loss's final Lemke basis coded per
+// contact (scene_objective.cpp), in the same layout. Matched CONTACT BY CONTACT: a
+// learned vertex or μ changes which contacts the speculative margin admits, how islands split and the order of their rows, so
 // a centre stored per island row would fall back to 0 (the biased shift) whenever anything in
 // the island changed. Each value is keyed by the contact's identity — the body pair (or body
 // and static shape) and the narrow-phase feature that made it (Contact::Feature) — and, for

@@ -9,10 +9,35 @@
 #include <lcprelax/core/stopwatch.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <exception>
 
 namespace lcprelax::learn {
 namespace {
+
+// A Stewart–Trinkle basis (size nc + 3nf: which of λn, β⁺, β⁻, γ is basic) as per-contact
+// values for detail::ProximalCenters, laid out as its centres ([nc; nf]): contact c's
+// normal bit, and per friction row f the code β⁺ + 2β⁻ + 4γ.
+void encode_basis(const std::vector<bool>& z_basic, Index nc, Index nf, Vector& code) {
+  code.setZero(nc + nf);
+  const auto bit = [&](Index i) { return z_basic[static_cast<std::size_t>(i)] ? 1.0 : 0.0; };
+  for (Index c = 0; c < nc; ++c) code(c) = bit(c);
+  for (Index f = 0; f < nf; ++f) code(nc + f) = bit(nc + f) + 2.0 * bit(nc + nf + f) + 4.0 * bit(nc + 2 * nf + f);
+}
+
+// The inverse of encode_basis; a value that is not such a code (a checkpoint of the relaxed
+// method) gives some basis, which only costs Lemke pivots.
+void decode_basis(const Vector& code, Index nc, Index nf, std::vector<bool>& z_basic) {
+  z_basic.assign(static_cast<std::size_t>(nc + 3 * nf), false);
+  for (Index c = 0; c < nc; ++c) z_basic[static_cast<std::size_t>(c)] = code(c) > 0.5;
+  for (Index f = 0; f < nf; ++f) {
+    const double v = code(nc + f);
+    const long bits = std::isfinite(v) ? std::lround(v) : 0;
+    z_basic[static_cast<std::size_t>(nc + f)] = (bits & 1) != 0;
+    z_basic[static_cast<std::size_t>(nc + nf + f)] = (bits & 2) != 0;
+    z_basic[static_cast<std::size_t>(nc + 2 * nf + f)] = (bits & 4) != 0;
+  }
+}
 
 }  // namespace
 
@@ -22,6 +47,7 @@ struct SceneObjective::Workspace {
   WorldGradient gradient;
   SceneObjectiveStats stats;
   Vector target, center;
+  std::vector<bool> warm_basis, final_basis;  // hard method
   std::unique_ptr<RelaxedStepLossWorkspace> relaxed;  // keeps the QpSolver between islands
 };
 
@@ -48,6 +74,11 @@ SceneObjective::SceneObjective(const SceneDataset& data, const SceneParameterMap
     throw InputError("scene loss: the lcp model's per-contact LCP block (learn block or block_tied) is learned with the "
                      "hard loss only");
   centers_.resize(data_.transitions.size());
+}
+
+bool SceneObjective::keeps_contact_values() const {
+  return (settings_.method == LossMethod::relaxed && settings_.relaxed_warm_center) ||
+         (settings_.method == LossMethod::hard && settings_.hard_warm_basis);
 }
 
 void SceneObjective::reset_centers() {
@@ -156,14 +187,35 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
   const double dt = data_.scene.settings.dt;
   SampleResult out;
 
-  if (settings_.method == LossMethod::relaxed) centers_[static_cast<std::size_t>(sample)].begin();
+  if (keeps_contact_values()) centers_[static_cast<std::size_t>(sample)].begin();
   std::vector<bool> in_island(world.bodies.size(), false);
   for (std::size_t k = 0; k < found.islands.size(); ++k) {
     auto t0 = std::chrono::steady_clock::now();
     const ContactSystem s = island_system(ws, found, k, t, in_island);
     StepLossResult r;
     switch (settings_.method) {
-      case LossMethod::hard: r = hard_step_loss(s, ws.target, dt, settings_.hard); break;
+      case LossMethod::hard: {
+        if (!settings_.hard_warm_basis) {
+          ws.stats.cold_contacts += s.num_contacts();
+          r = hard_step_loss(s, ws.target, dt, settings_.hard);
+          break;
+        }
+        detail::ProximalCenters& bases = centers_[static_cast<std::size_t>(sample)];
+        const Index nc = s.num_contacts(), nf = s.num_friction();
+        ws.warm_basis.clear();
+        if (!bases.empty()) {
+          ws.stats.cold_contacts += bases.lookup(found.contacts, s, ws.center);
+          decode_basis(ws.center, nc, nf, ws.warm_basis);
+        } else {
+          ws.stats.cold_contacts += nc;
+        }
+        r = hard_step_loss(s, ws.target, dt, settings_.hard, ws.warm_basis, &ws.final_basis);
+        if (has_solution(r.status) && static_cast<Index>(ws.final_basis.size()) == nc + 3 * nf) {
+          encode_basis(ws.final_basis, nc, nf, ws.center);
+          bases.record(found.contacts, s, ws.center);
+        }
+        break;
+      }
       case LossMethod::relaxed: {
         detail::ProximalCenters& centers = centers_[static_cast<std::size_t>(sample)];
         const bool warm = settings_.relaxed_warm_center && !centers.empty();
@@ -182,6 +234,7 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
       case LossMethod::convex: r = convex_step_loss(s, ws.target, dt, settings_.convex); break;
     }
     ws.stats.seconds_loss += seconds_since(t0);
+    ws.stats.solver_work += r.work;
     if (!count_island(ws.stats, sample, t, k, s, r.status, r.message, out.message)) {
       out.ok = false;
       return out;
@@ -203,8 +256,7 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     ws.gradient.bodies[b].inertia += -2.0 * dt * e.z() * u.z() / (body.inertia * body.inertia);
     ws.gradient.bodies[b].velocity_residual += 2.0 * e * velocity_residual_features(body).transpose();
   }
-  if (settings_.method == LossMethod::relaxed && settings_.relaxed_warm_center)
-    centers_[static_cast<std::size_t>(sample)].commit();
+  if (keeps_contact_values()) centers_[static_cast<std::size_t>(sample)].commit();
   out.gradient = map_.gradient(world, found.contacts, ws.gradient);
   return out;
 }
@@ -234,6 +286,7 @@ ResidualResult SceneObjective::evaluate_residuals(Index sample, const ParameterS
     const ContactSystem s = island_system(ws, found, k, t, in_island);
     const StepJacobianResult r = convex_step_jacobian(s, ws.target, dt, settings_.convex);
     ws.stats.seconds_loss += seconds_since(t0);
+    ws.stats.solver_work += r.work;
     if (!count_island(ws.stats, sample, t, k, s, r.status, r.message, out.message)) {
       out.ok = false;
       return out;
@@ -282,6 +335,7 @@ SceneObjectiveStats SceneObjective::stats() const {
     s.failed_islands += ws->stats.failed_islands;
     s.cold_contacts += ws->stats.cold_contacts;
     s.proximal_solves += ws->stats.proximal_solves;
+    s.solver_work += ws->stats.solver_work;
     s.seconds_collision += ws->stats.seconds_collision;
     s.seconds_loss += ws->stats.seconds_loss;
     s.seconds_pullback += ws->stats.seconds_pullback;

@@ -29,6 +29,13 @@
 // that epoch's gradient). relaxed_warm_center = false: every evaluation starts centred at 0
 // with the relaxed settings' proximal_iterations. The stored centres are saved in training
 // checkpoints (save_state, checkpoint.hpp); stats() count this object's evaluations only.
+// Hard method: each transition keeps its islands' final Lemke basis, matched contact by
+// contact in the same way (which of λn, β⁺, β⁻, γ is basic), and the next evaluation starts
+// Lemke from it (step_loss_hard.hpp: the warm basis, then a crash path from it). Over the
+// epochs θ changes little, so the stored basis is often still feasible (zero pivots). The
+// loss is the LCP's solution either way; only at a degenerate solution (z_i = w_i = 0) can
+// the basis, and so the one-sided gradient, differ from a cold start's. hard_warm_basis =
+// false: every evaluation starts cold. The bases are saved in checkpoints as the centres are.
 // Contacts are found at the CURRENT θ (a learned vertex or ground moves them), then held
 // fixed while differentiating (a contact appearing or disappearing is a kink).
 #include <lcprelax/learn/scene_dataset.hpp>
@@ -56,6 +63,7 @@ struct SceneLossSettings {
   ConvexStepLossSettings convex;
   bool relaxed_warm_center = true;  ///< carry each island's proximal centre across evaluations
   int relaxed_cold_iterations = 5;  ///< proximal iterations of an island with a new contact (≥ 1)
+  bool hard_warm_basis = true;      ///< hard: start each island's Lemke from its last final basis
   std::string validation_error() const;  ///< empty if valid, else names the field
 };
 
@@ -66,8 +74,9 @@ struct SceneObjectiveStats {
   long contacts = 0;
   long inaccurate_islands = 0;  ///< ContactStatus::solved_inaccurate (kept, usable)
   long failed_islands = 0;      ///< no solution: their transition failed
-  long cold_contacts = 0;       ///< relaxed: contacts evaluated without a stored centre
+  long cold_contacts = 0;       ///< contacts evaluated without a stored centre (relaxed) or basis (hard)
   long proximal_solves = 0;     ///< relaxed QP solves (proximal iterations included)
+  long solver_work = 0;         ///< Lemke pivots (hard) or interior-point iterations, summed
   double seconds_collision = 0.0, seconds_loss = 0.0, seconds_pullback = 0.0;
 };
 
@@ -93,7 +102,8 @@ class SceneObjective : public Objective {
 
   SceneObjectiveStats stats() const;
   void reset_stats();
-  /// Forgets the relaxed method's stored proximal centres (the next evaluations start at 0).
+  /// Forgets the stored proximal centres (relaxed: the next evaluations start at 0) or final
+  /// bases (hard: the next evaluations start cold).
   void reset_centers();
   const SceneLossSettings& settings() const { return settings_; }
 
@@ -108,7 +118,9 @@ class SceneObjective : public Objective {
   const SceneParameterMap& map_;
   SceneLossSettings settings_;
   std::vector<std::unique_ptr<Workspace>> workspaces_;
-  std::vector<detail::ProximalCenters> centers_;  // per transition
+  std::vector<detail::ProximalCenters> centers_;  // per transition: centres (relaxed) or bases (hard)
+  /// Whether evaluate() keeps per-contact values between evaluations (centres or bases).
+  bool keeps_contact_values() const;
 };
 
 }  // namespace lcprelax::learn
