@@ -288,6 +288,20 @@ def learn_cost(results):
              "", src(*names))]
 
 
+def learn_hard_warm(results):
+    name = "learn_hard_warm_basis.txt"
+    text = read_text(results, name)
+    found = re.findall(r"time cold / stored: ([0-9.]+); pivots cold / stored: ([0-9.]+)", text)
+    if not found:
+        raise SystemExit(f"{name}: no 'time cold / stored' line")
+    time = [float(t) for t, _ in found]
+    piv = [float(p) for _, p in found]
+    return [("Hard-loss scene training with each transition's stored Lemke bases / cold starts "
+             "(30 and 100 bodies, same run)",
+             f"{g(min(time), 3)}–{g(max(time), 3)}× less time, {g(min(piv), 3)}–{g(max(piv), 3)}× fewer pivots "
+             f"({len(found)} runs)", "", src(name))]
+
+
 def learn_threads(results):
     name = "learn_throughput.csv"
     rows = read_csv(results, name)
@@ -366,6 +380,7 @@ def generate(results):
     rows += learn_block(results)
     rows += learn_scene(results)
     rows += learn_cost(results)
+    rows += learn_hard_warm(results)
     rows += learn_threads(results)
     rows += qp_layer(results)
     rows += stiff(results)
