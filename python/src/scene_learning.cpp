@@ -141,7 +141,8 @@ void bind_scene_learning(py::module_& m) {
             Busy busy(o.mutex(), "SceneObjective");
             o.scene_objective_->reset_centers();
           },
-          "relaxed: forget the stored proximal centres (the next evaluations start at 0)");
+          "forget the stored per-contact values: relaxed, the proximal centres (the next evaluations "
+          "start at 0); hard, the final Lemke bases (the next evaluations start cold)");
 }
 
 }  // namespace lcprelax::python
