@@ -1,6 +1,7 @@
 // Learning on a multi-body scene (scene_objective.hpp).
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/scene_objective.hpp>
+#include <lcprelax/models/lcp_basis_codes.hpp>
 #include <lcprelax/models/simulator.hpp>
 
 #include "proximal_centers.hpp"
@@ -13,33 +14,6 @@
 #include <exception>
 
 namespace lcprelax::learn {
-namespace {
-
-// A Stewart–Trinkle basis (size nc + 3nf: which of λn, β⁺, β⁻, γ is basic) as per-contact
-// values for detail::ProximalCenters, laid out as its centres ([nc; nf]): contact c's
-// normal bit, and per friction row f the code β⁺ + 2β⁻ + 4γ.
-void encode_basis(const std::vector<bool>& z_basic, Index nc, Index nf, Vector& code) {
-  code.setZero(nc + nf);
-  const auto bit = [&](Index i) { return z_basic[static_cast<std::size_t>(i)] ? 1.0 : 0.0; };
-  for (Index c = 0; c < nc; ++c) code(c) = bit(c);
-  for (Index f = 0; f < nf; ++f) code(nc + f) = bit(nc + f) + 2.0 * bit(nc + nf + f) + 4.0 * bit(nc + 2 * nf + f);
-}
-
-// The inverse of encode_basis; a value that is not such a code (a checkpoint of the relaxed
-// method) gives some basis, which only costs Lemke pivots.
-void decode_basis(const Vector& code, Index nc, Index nf, std::vector<bool>& z_basic) {
-  z_basic.assign(static_cast<std::size_t>(nc + 3 * nf), false);
-  for (Index c = 0; c < nc; ++c) z_basic[static_cast<std::size_t>(c)] = code(c) > 0.5;
-  for (Index f = 0; f < nf; ++f) {
-    const double v = code(nc + f);
-    const long bits = std::isfinite(v) ? std::lround(v) : 0;
-    z_basic[static_cast<std::size_t>(nc + f)] = (bits & 1) != 0;
-    z_basic[static_cast<std::size_t>(nc + nf + f)] = (bits & 2) != 0;
-    z_basic[static_cast<std::size_t>(nc + 2 * nf + f)] = (bits & 4) != 0;
-  }
-}
-
-}  // namespace
 
 struct SceneObjective::Workspace {
   World world;
@@ -205,13 +179,13 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
         ws.warm_basis.clear();
         if (!bases.empty()) {
           ws.stats.cold_contacts += bases.lookup(found.contacts, s, ws.center);
-          decode_basis(ws.center, nc, nf, ws.warm_basis);
+          decode_lcp_basis(ws.center, nc, nf, ws.warm_basis);
         } else {
           ws.stats.cold_contacts += nc;
         }
         r = hard_step_loss(s, ws.target, dt, settings_.hard, ws.warm_basis, &ws.final_basis);
         if (has_solution(r.status) && static_cast<Index>(ws.final_basis.size()) == nc + 3 * nf) {
-          encode_basis(ws.final_basis, nc, nf, ws.center);
+          encode_lcp_basis(ws.final_basis, nc, nf, ws.center);
           bases.record(found.contacts, s, ws.center);
         }
         break;

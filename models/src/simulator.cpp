@@ -2,6 +2,7 @@
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/kkt/qp_solver.hpp>
 #include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/models/lcp_basis_codes.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/world/normal_softness.hpp>
@@ -314,18 +315,16 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         const Index nc = s.num_contacts(), nf = s.num_friction();
         std::vector<bool> warm;
         if (settings_.warm_start) {
-          warm.assign(static_cast<std::size_t>(nc + 3 * nf), false);
+          Vector code = Vector::Zero(nc + nf);  // a contact not in warm_: nothing basic
           for (Index c = 0; c < nc; ++c) {
             auto it = warm_.find(keys[s.contacts[c]]);
-            if (it != warm_.end()) warm[c] = it->second.normal;
+            if (it != warm_.end()) code(c) = it->second.normal;
           }
           for (Index f = 0; f < nf; ++f) {
             auto it = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
-            if (it == warm_.end()) continue;
-            warm[nc + f] = it->second.plus;
-            warm[nc + nf + f] = it->second.minus;
-            warm[nc + 2 * nf + f] = it->second.slide;
+            if (it != warm_.end()) code(nc + f) = it->second.friction;
           }
+          decode_lcp_basis(code, nc, nf, warm);
         }
         wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm);
       } else if (settings_.convex_solver == ConvexSolver::active_set_newton) {
@@ -335,11 +334,13 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
           warm.assign(static_cast<std::size_t>(nc + nf), 0);
           for (Index c = 0; c < nc; ++c) {
             auto it = warm_.find(keys[s.contacts[c]]);
-            warm[c] = it == warm_.end() ? -1 : (it->second.normal ? 1 : 0);
+            warm[c] = it == warm_.end() ? -1 : (it->second.normal > 0.5 ? 1 : 0);
           }
           for (Index f = 0; f < nf; ++f) {
             auto it = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
-            if (it != warm_.end()) warm[nc + f] = it->second.plus ? 1 : (it->second.minus ? -1 : 0);
+            if (it == warm_.end()) continue;
+            const int bits = friction_basis_bits(it->second.friction);
+            warm[nc + f] = (bits & kBasisPlus) ? 1 : ((bits & kBasisMinus) ? -1 : 0);
           }
         }
         wk.solution = solve_convex_model_newton(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
@@ -384,6 +385,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   // Velocities: islands from their solutions, free bodies by gravity and applied forces.
   std::vector<bool> in_island(world.bodies.size(), false);
   std::map<ContactKey, WarmEntry> next_warm;
+  Vector code;
   for (std::size_t i = 0; i < work.size(); ++i) {
     const ContactSystem& s = work[i].system;
     const ContactSolution& sol = work[i].solution;
@@ -408,13 +410,9 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     if (sol.newton_fallback) ++stats.newton_fallbacks;
     // The LCP's final basis, or the convex active-set method's final active states.
     if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
-      for (Index c = 0; c < nc; ++c) next_warm[keys[s.contacts[c]]].normal = sol.z_basic[c];
-      for (Index f = 0; f < nf; ++f) {
-        WarmEntry& e = next_warm[keys[s.contacts[s.friction_rows[f]]]];
-        e.plus = sol.z_basic[nc + f];
-        e.minus = sol.z_basic[nc + nf + f];
-        e.slide = sol.z_basic[nc + 2 * nf + f];
-      }
+      encode_lcp_basis(sol.z_basic, nc, nf, code);
+      for (Index c = 0; c < nc; ++c) next_warm[keys[s.contacts[c]]].normal = code(c);
+      for (Index f = 0; f < nf; ++f) next_warm[keys[s.contacts[s.friction_rows[f]]]].friction = code(nc + f);
     }
   }
   warm_.swap(next_warm);

@@ -188,8 +188,9 @@ class Simulator {
  private:
   void check_extreme_values() const;  // the kMaxSceneMagnitude checks of the constructor
   using ContactKey = lcprelax::ContactKey;
+  /// A contact's part of the last basis or active set, as lcp_basis_codes.hpp's codes.
   struct WarmEntry {
-    bool normal = false, plus = false, minus = false, slide = false;
+    double normal = 0.0, friction = 0.0;
   };
   std::vector<ContactKey> contact_keys() const;
   void project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats);
