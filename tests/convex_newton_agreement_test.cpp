@@ -131,7 +131,11 @@ TEST(ConvexNewton, PerStepAgreementOnStack) {
   EXPECT_LE(t.worst_kkt, kKktTol);
 }
 
-double trajectory_gap(const Scene& scene, int steps, int& fallbacks) {
+// One post-stabilization pass: further passes re-detect contacts at projected positions, a
+// discontinuous map that turns the solvers' roundoff differences into larger trajectory
+// differences (pile: 2.3e-4 m with the default 5 passes); this compares the velocity solvers.
+double trajectory_gap(Scene scene, int steps, int& fallbacks) {
+  scene.settings.post_stabilization_passes = 1;
   Simulator ipm = make_simulator(scene);
   SimulatorSettings ns = scene.settings;
   ns.convex_solver = ConvexSolver::active_set_newton;

@@ -57,6 +57,7 @@ std::string LearningPileOptions::validation_error() const {
   if (!(std::isfinite(mu) && mu >= 0)) return "mu: must be finite and >= 0";
   if (!(std::isfinite(dt) && dt > 0)) return "dt: must be finite and > 0";
   if (!(std::isfinite(margin) && margin >= 0)) return "margin: must be finite and >= 0";
+  if (post_stabilization_passes < 1) return "post_stabilization_passes: must be >= 1";
   return {};
 }
 
@@ -85,6 +86,7 @@ Scene make_learning_pile(const LearningPileOptions& o) {
   scene.name = "learning pile of " + std::to_string(o.bodies) + " bodies";
   scene.settings.dt = o.dt;
   scene.settings.margin = o.margin;
+  scene.settings.post_stabilization_passes = o.post_stabilization_passes;
   scene.settings.model = o.model;
   scene.world.friction.default_mu = o.mu;
   scene.world.half_planes.push_back(HalfPlane{Vec2(0.0, 1.0), 0.0, 0});

@@ -141,6 +141,11 @@ struct LearningPileOptions {
   double mu = 0.5;                         ///< friction coefficient of every pair, ≥ 0
   double dt = 1e-2;                        ///< s, > 0
   double margin = 1e-2;                    ///< m, ≥ 0
+  /// The scene's SimulatorSettings::post_stabilization_passes, ≥ 1. One, not the simulator's
+  /// default of 5: the further passes project contacts onto exactly −slop overlap (their
+  /// true gaps), and a transition that starts there sits on the gap term's kink, where the
+  /// losses have one-sided derivatives in the gap parameters.
+  int post_stabilization_passes = 1;
   std::string validation_error() const;
 };
 
