@@ -4,6 +4,7 @@
 // relaxed and convex losses against central differences of the whole pipeline (θ → world →
 // collision → islands → assembly → loss), relative error ≤ 1e-5 away from kinks.
 #include "learn_scene_fd_support.hpp"
+#include "learn_scene_pile_support.hpp"
 
 #include <lcprelax/learn/scene_objective.hpp>
 
@@ -27,16 +28,9 @@ const Pile& settled_pile(ContactModel model) {
   static bool made[2] = {false, false};
   const int k = model == ContactModel::lcp ? 0 : 1;
   if (!made[k]) {
-    LearningPileOptions po;
-    po.bodies = 20;
-    po.classes = 4;
-    po.model = model;
     SceneDatasetSettings ds;
-    ds.steps = 90;
     ds.drop_without_contact = false;
-    piles[k].data = generate_scene_dataset(make_learning_pile(po), ds);
-    auto& tr = piles[k].data.transitions;
-    tr.erase(tr.begin(), tr.end() - 40);
+    piles[k].data = test::last_transitions(make_learning_pile(test::learning_pile_options(20, 4, model)), 90, 40, ds);
     made[k] = true;
   }
   return piles[k];
@@ -76,10 +70,8 @@ TEST(SceneGradient, HardHasZeroMuGradientFromTenTimesTheTruthOnStickingData) {
   LearningPileOptions po;
   po.bodies = 20;
   SceneDatasetSettings ds;
-  ds.steps = 120;
   ds.push_fraction = 0.0;
-  SceneDataset data = generate_scene_dataset(make_learning_pile(po), ds);
-  data.transitions.erase(data.transitions.begin(), data.transitions.end() - 5);
+  const SceneDataset data = test::last_transitions(make_learning_pile(po), 120, 5, ds);
   const SceneParameterMap map(data.scene.world, SceneParameterSettings{});
   ParameterSet theta = map.parameters(data.scene.world);
   theta.set_value("mu", 10 * theta.value("mu"));

@@ -11,6 +11,8 @@
 //   no contact has a stored basis (all counted in stats().cold_contacts).
 #include <lcprelax/learn/scene_objective.hpp>
 
+#include "learn_scene_pile_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,16 +24,9 @@ namespace {
 
 const SceneDataset& dropped_pile() {
   static const SceneDataset data = [] {
-    LearningPileOptions po;
-    po.bodies = 12;
-    po.classes = 3;
-    po.model = ContactModel::lcp;
     SceneDatasetSettings ds;
-    ds.steps = 60;
     ds.drop_without_contact = false;
-    SceneDataset d = generate_scene_dataset(make_learning_pile(po), ds);
-    d.transitions.erase(d.transitions.begin(), d.transitions.end() - 10);
-    return d;
+    return test::last_transitions(make_learning_pile(test::learning_pile_options(12, 3, ContactModel::lcp)), 60, 10, ds);
   }();
   return data;
 }

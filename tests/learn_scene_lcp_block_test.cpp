@@ -11,6 +11,7 @@
 //   the convex Simulator (the lcp one falls back to the physical convex model), both flags at once,
 //   the polygon CLI's flags, a non-finite block.
 #include "learn_scene_fd_support.hpp"
+#include "learn_scene_pile_support.hpp"
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/polygon_params.hpp>
@@ -32,16 +33,7 @@ namespace {
 using test::parameters_named;
 
 SceneDataset block_pile(std::size_t keep = 40) {
-  LearningPileOptions po;
-  po.bodies = 6;
-  po.classes = 2;
-  po.model = ContactModel::lcp;
-  const Scene scene = make_learning_pile(po);
-  SceneDatasetSettings ds;
-  ds.steps = 60;
-  SceneDataset data = generate_scene_dataset(scene, ds);
-  if (data.transitions.size() > keep) data.transitions.erase(data.transitions.begin(), data.transitions.end() - keep);
-  return data;
+  return test::last_transitions(make_learning_pile(test::learning_pile_options(6, 2, ContactModel::lcp)), 60, keep);
 }
 
 SceneParameterSettings learn(const std::string& flags) {

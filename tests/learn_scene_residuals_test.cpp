@@ -10,6 +10,8 @@
 // - the hard and relaxed methods say why they have no residuals.
 #include <lcprelax/learn/scene_objective.hpp>
 
+#include "learn_scene_pile_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,16 +23,9 @@ namespace {
 
 const SceneDataset& settled_convex_pile() {
   static const SceneDataset data = [] {
-    LearningPileOptions po;
-    po.bodies = 12;
-    po.classes = 3;
-    po.model = ContactModel::convex;
     SceneDatasetSettings ds;
-    ds.steps = 70;
     ds.drop_without_contact = false;
-    SceneDataset d = generate_scene_dataset(make_learning_pile(po), ds);
-    d.transitions.erase(d.transitions.begin(), d.transitions.end() - 10);
-    return d;
+    return test::last_transitions(make_learning_pile(test::learning_pile_options(12, 3, ContactModel::convex)), 70, 10, ds);
   }();
   return data;
 }

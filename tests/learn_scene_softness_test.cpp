@@ -14,6 +14,7 @@
 //   the convex Simulator runs a soft scene; zero softness leaves its answer bit for bit;
 // - refusals: the relaxed-dual loss, the polygon flags, bad values.
 #include "learn_scene_fd_support.hpp"
+#include "learn_scene_pile_support.hpp"
 
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/learn/polygon_params.hpp>
@@ -201,15 +202,7 @@ TEST(SceneSoftness, LayoutRoundTripAndBounds) {
 }
 
 SceneDataset soft_pile() {
-  LearningPileOptions po;
-  po.bodies = 6;
-  po.classes = 2;
-  const Scene scene = make_learning_pile(po);
-  SceneDatasetSettings ds;
-  ds.steps = 60;
-  SceneDataset data = generate_scene_dataset(scene, ds);
-  data.transitions.erase(data.transitions.begin(), data.transitions.end() - 40);
-  return data;
+  return test::last_transitions(make_learning_pile(test::learning_pile_options(6, 2, ContactModel::lcp)), 60, 40);
 }
 
 void check_softness_gradient(LossMethod method) {
