@@ -49,6 +49,11 @@ struct PyLcpResult {
   long pivots;
   double complementarity, seconds;
   bool has_solution, warm_started;
+  // LcpInfo's diagnostics of how the pivots went
+  bool crash_started;
+  long crash_pivots, tie_breaks, refactorizations, ray_rechecks;
+  int repair_rounds;
+  double regularization;
 };
 
 struct PyLcpGradient {
@@ -97,8 +102,10 @@ class PyLemkeSolver {
     const LcpInfo& i = r->info;
     py::array_t<bool> basic(static_cast<py::ssize_t>(r->z_basic.size()));
     for (std::size_t k = 0; k < r->z_basic.size(); ++k) basic.mutable_data()[k] = r->z_basic[k];
-    return {to_string(i.status), i.message, to_string(i.method), to_numpy(r->z), to_numpy(r->w), basic, i.pivots,
-            i.complementarity, i.seconds, has_solution(i.status), i.warm_started};
+    return {to_string(i.status), i.message,   to_string(i.method), to_numpy(r->z),     to_numpy(r->w),
+            basic,           i.pivots,    i.complementarity,   i.seconds,          has_solution(i.status),
+            i.warm_started,  i.crash_started, i.crash_pivots,  i.tie_breaks,       i.refactorizations,
+            i.ray_rechecks,  i.repair_rounds, i.regularization};
   }
 
   PyLcpGradient backward(const py::object& dl_dz) {
@@ -136,7 +143,20 @@ void bind_lcp(py::module_& m) {
       .def_readonly("seconds", &PyLcpResult::seconds)
       .def_readonly("method", &PyLcpResult::method, "'dense' or 'sparse': the basis factorization used")
       .def_readonly("has_solution", &PyLcpResult::has_solution)
-      .def_readonly("warm_started", &PyLcpResult::warm_started)
+      .def_readonly("warm_started", &PyLcpResult::warm_started,
+                    "the warm-start basis was complementary and feasible (0 pivots)")
+      .def_readonly("crash_started", &PyLcpResult::crash_started,
+                    "Lemke ran from the (infeasible) warm-start basis: a crash path")
+      .def_readonly("crash_pivots", &PyLcpResult::crash_pivots, "pivots of that crash path (included in pivots)")
+      .def_readonly("tie_breaks", &PyLcpResult::tie_breaks,
+                    "pivots whose ratio test compared rows of B⁻¹ (lexicographic ties)")
+      .def_readonly("refactorizations", &PyLcpResult::refactorizations, "basis factorizations from scratch")
+      .def_readonly("ray_rechecks", &PyLcpResult::ray_rechecks,
+                    "rays found with an updated factorization, rechecked after a fresh one")
+      .def_readonly("repair_rounds", &PyLcpResult::repair_rounds,
+                    "rounds of repair of a singular crash basis")
+      .def_readonly("regularization", &PyLcpResult::regularization,
+                    "ε of an accepted retry on M + εI (then the answer solves that LCP), 0 if none")
       .def("__repr__", [](const PyLcpResult& r) {
         return "LcpResult(status='" + r.status + "', pivots=" + std::to_string(r.pivots) +
                ", complementarity=" + std::string(py::repr(py::float_(r.complementarity))) + ")";

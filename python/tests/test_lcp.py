@@ -68,6 +68,27 @@ def test_warm_start_and_update_q():
     assert np.allclose(second.z, 2.0 * first.z, atol=1e-12)
 
 
+def test_diagnostics_of_a_crash_path():
+    # The basis of Q's solution {z0, z2} is infeasible for q2 = (-1, -5, -1) (its basic
+    # w1 = -5 + z0 + z2 < 0): with crash_start Lemke runs from it and reports the crash
+    # path's pivots.
+    solver = lcprelax.LemkeSolver(method="sparse", crash_start=True)
+    solver.setup(sp.csc_matrix(M), Q)
+    first = solver.solve()
+    assert first.crash_pivots == 0 and not first.crash_started and first.regularization == 0.0
+    assert first.tie_breaks >= 0 and first.ray_rechecks == 0 and first.repair_rounds == 0
+    q2 = np.array([-1.0, -5.0, -1.0])
+    solver.update_q(q2)
+    solver.warm_start(first.z_basic)
+    r = solver.solve()
+    assert r.status == "solved", r.message
+    check_complementary(M, q2, r)
+    assert not r.warm_started and r.crash_started
+    assert 0 < r.crash_pivots <= r.pivots
+    assert r.refactorizations >= 1  # the crash basis is factorized from scratch
+    assert r.regularization == 0.0
+
+
 def test_lemke_settings():
     solver = lcprelax.LemkeSolver(method="sparse", max_pivots=100, covering=np.ones(3))
     assert solver.settings["method"] == "sparse" and solver.settings["max_pivots"] == 100
