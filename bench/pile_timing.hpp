@@ -114,6 +114,9 @@ struct WindowStats {
   double collision_mean = 0.0;   ///< StepStats::collision_seconds per step (s)
   double solve_mean = 0.0;       ///< StepStats::solve_seconds per step (s)
   long failed_islands = 0;
+  /// StepStats::inaccurate_islands summed: answers that are not the model's exact solution
+  /// (lcp model: the perturbed or regularized LCP's, contact_step.hpp steps 3–4)
+  long inaccurate_islands = 0;
   long newton_fallbacks = 0;     ///< StepStats::newton_fallbacks summed (convex active-set Newton)
   double max_penetration = 0.0;  ///< m
   double final_speed = 0.0;      ///< max_body_speed after the window (m/s)
@@ -157,6 +160,7 @@ inline WindowStats time_window(const Scene& scene, const SimulatorSettings& sett
     w.max_penetration = std::max(w.max_penetration, st.max_penetration);
     if (st.failed_islands > 0 && w.failed_islands == 0) w.first_failure = st.first_failure;
     w.failed_islands += st.failed_islands;
+    w.inaccurate_islands += st.inaccurate_islands;
     w.newton_fallbacks += st.newton_fallbacks;
     if (total > budget && k + 1 < steps) {
       w.budget_hit = true;

@@ -20,6 +20,8 @@
 // reuse" is the share of phase solvers updated in place. The LCP model is run
 // only up to --lcp-max-bodies bodies (row with steps = 0 and a note above), and every
 // window stops once its timed steps used --budget s (budget_hit = 1).
+// inaccurate_islands: islands whose answer is not the model's exact solution (the lcp model's
+// perturbed or regularized LCP, models/contact_step.hpp), summed over the window's steps.
 // speedup_vs_1 = (s/step with 1 thread) / (s/step with this many threads), same run, same
 // settled state. Printed at the end: per model and thread count, the least-squares slope
 // of log(s/step) against log(mean contacts) over the sizes measured (all, and those with
@@ -65,10 +67,11 @@ struct Row {
 
 void write_row(std::ostream& os, const Row& r) {
   char buf[1024];
-  std::snprintf(buf, sizeof buf, "%s,%d,%s,%d,%d,%d,%d,%.6g,%.1f,%d,%d,%d,%.1f,%.6g,%.6g,%.6g,%.6g,%.4g,%ld,%.6g,%.6g,%ld,", r.phase.c_str(),
+  std::snprintf(buf, sizeof buf, "%s,%d,%s,%d,%d,%d,%d,%.6g,%.1f,%d,%d,%d,%.1f,%.6g,%.6g,%.6g,%.6g,%.4g,%ld,%.6g,%.6g,%ld,%ld,", r.phase.c_str(),
                 r.bodies, r.model.c_str(), r.threads, r.w.steps, r.w.budget_hit ? 1 : 0, r.settled ? 1 : 0,
                 r.w.final_speed, r.w.contacts_mean, r.w.contacts_max, r.w.islands_max, r.w.unknowns_max, r.w.work_mean,
-                r.w.seconds_per_step, r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.max_energy_gain, r.w.newton_fallbacks);
+                r.w.seconds_per_step, r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.max_energy_gain, r.w.newton_fallbacks,
+                r.w.inaccurate_islands);
   os << buf << csv_quote(r.note.empty() ? r.w.first_failure : r.note) << '\n';
   os.flush();
 }
@@ -107,7 +110,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   out << "phase,bodies,model,threads,steps,budget_hit,settled,final_speed,contacts_mean,contacts_max,islands_max,"
-         "unknowns_max,work_mean,seconds_per_step,cpu_per_step,collision_s,solve_s,speedup_vs_1,failed_islands,max_penetration,max_energy_gain,newton_fallbacks,note\n";
+         "unknowns_max,work_mean,seconds_per_step,cpu_per_step,collision_s,solve_s,speedup_vs_1,failed_islands,max_penetration,max_energy_gain,newton_fallbacks,inaccurate_islands,note\n";
 
   // per (model, threads): (mean contacts, s/step) over the sizes
   std::map<std::pair<std::string, int>, std::pair<std::vector<double>, std::vector<double>>> series, cpu_series;
@@ -170,11 +173,11 @@ int main(int argc, char** argv) {
         cpu_series[{m, t}].first.push_back(r.w.contacts_mean);
         cpu_series[{m, t}].second.push_back(r.w.cpu_per_step);
         std::printf("N=%d %s T=%d: %d steps%s, contacts %.1f (max %d), islands %d, unknowns %d, work %.1f, "
-                    "%.4g s/step (cpu %.4g s, collision %.3g, solve %.3g), speedup %.3g, failed %ld, max_pen %.3g m, "
+                    "%.4g s/step (cpu %.4g s, collision %.3g, solve %.3g), speedup %.3g, failed %ld, inaccurate %ld, max_pen %.3g m, "
                     "newton fallbacks %ld, solver reuse %.2f, qp assemble %.3g, setup/update %.3g, solve %.3g (factor %.3g)%s%s\n",
                     n, m.c_str(), t, r.w.steps, r.w.budget_hit ? " (budget hit)" : "", r.w.contacts_mean,
                     r.w.contacts_max, r.w.islands_max, r.w.unknowns_max, r.w.work_mean, r.w.seconds_per_step,
-                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.max_penetration, r.w.newton_fallbacks, r.w.solver_reuse, r.w.qp_assemble, r.w.qp_prepare, r.w.qp_solve, r.w.qp_factor, r.w.first_failure.empty() ? "" : ": ",
+                    r.w.cpu_per_step, r.w.collision_mean, r.w.solve_mean, r.speedup, r.w.failed_islands, r.w.inaccurate_islands, r.w.max_penetration, r.w.newton_fallbacks, r.w.solver_reuse, r.w.qp_assemble, r.w.qp_prepare, r.w.qp_solve, r.w.qp_factor, r.w.first_failure.empty() ? "" : ": ",
                     r.w.first_failure.c_str());
         std::fflush(stdout);
       }
