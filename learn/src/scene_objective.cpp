@@ -48,6 +48,7 @@ SceneObjective::SceneObjective(const SceneDataset& data, const SceneParameterMap
     throw InputError("scene loss: the lcp model's per-contact LCP block (learn block or block_tied) is learned with the "
                      "hard loss only");
   centers_.resize(data_.transitions.size());
+  perturbed_runs_.assign(data_.transitions.size(), 0);
 }
 
 bool SceneObjective::keeps_contact_values() const {
@@ -57,6 +58,7 @@ bool SceneObjective::keeps_contact_values() const {
 
 void SceneObjective::reset_centers() {
   for (detail::ProximalCenters& c : centers_) c.clear();
+  std::fill(perturbed_runs_.begin(), perturbed_runs_.end(), static_cast<unsigned char>(0));
 }
 
 SceneObjective::~SceneObjective() = default;
@@ -65,12 +67,25 @@ void SceneObjective::save_state(StateWriter& out) const {
   out.put_string("scene: proximal centres");
   out.put_u64(centers_.size());
   for (const detail::ProximalCenters& c : centers_) c.save(out);
+  out.put_string("scene: perturbed runs");
+  out.put_ints(std::vector<int>(perturbed_runs_.begin(), perturbed_runs_.end()));
 }
 
 void SceneObjective::load_state(StateReader& in) {
   in.expect_tag("scene: proximal centres");
   in.get_count(centers_.size(), false, "transitions");
   for (detail::ProximalCenters& c : centers_) c.load(in);
+  std::fill(perturbed_runs_.begin(), perturbed_runs_.end(), static_cast<unsigned char>(0));
+  if (in.remaining() == 0) return;  // a state saved before the runs were kept: none
+  in.expect_tag("scene: perturbed runs");
+  const std::vector<int> runs = in.get_ints();
+  if (runs.size() != perturbed_runs_.size())
+    throw InputError("scene objective state: " + std::to_string(runs.size()) + " perturbed-run counts for " +
+                     std::to_string(perturbed_runs_.size()) + " transitions");
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (runs[i] < 0 || runs[i] > 64) throw InputError("scene objective state: a perturbed-run count outside 0…64");
+    perturbed_runs_[i] = static_cast<unsigned char>(runs[i]);
+  }
 }
 
 Index SceneObjective::num_samples() const { return static_cast<Index>(data_.transitions.size()); }
@@ -163,6 +178,9 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
 
   if (keeps_contact_values()) centers_[static_cast<std::size_t>(sample)].begin();
   std::vector<bool> in_island(world.bodies.size(), false);
+  unsigned char& perturbed_runs = perturbed_runs_[static_cast<std::size_t>(sample)];
+  const bool skip_exact_cold = perturbed_runs > 0 && perturbed_runs % kExactRetryEvery != 0;
+  bool inaccurate = false;  // some island of this evaluation ended solved_inaccurate (hard, stored bases)
   for (std::size_t k = 0; k < found.islands.size(); ++k) {
     auto t0 = std::chrono::steady_clock::now();
     const ContactSystem s = island_system(ws, found, k, t, in_island);
@@ -183,7 +201,9 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
         } else {
           ws.stats.cold_contacts += nc;
         }
-        r = hard_step_loss(s, ws.target, dt, settings_.hard, ws.warm_basis, &ws.final_basis);
+        r = hard_step_loss(s, ws.target, dt, settings_.hard, ws.warm_basis, &ws.final_basis,
+                           skip_exact_cold && !ws.warm_basis.empty());
+        inaccurate = inaccurate || r.status == ContactStatus::solved_inaccurate;
         if (has_solution(r.status) && static_cast<Index>(ws.final_basis.size()) == nc + 3 * nf) {
           encode_lcp_basis(ws.final_basis, nc, nf, ws.center);
           bases.record(found.contacts, s, ws.center);
@@ -231,6 +251,8 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
     ws.gradient.bodies[b].velocity_residual += 2.0 * e * velocity_residual_features(body).transpose();
   }
   if (keeps_contact_values()) centers_[static_cast<std::size_t>(sample)].commit();
+  if (settings_.method == LossMethod::hard && settings_.hard_warm_basis)
+    perturbed_runs = inaccurate ? static_cast<unsigned char>(1 + perturbed_runs % 64) : 0;
   out.gradient = map_.gradient(world, found.contacts, ws.gradient);
   return out;
 }

@@ -71,7 +71,7 @@ std::string HardStepLossSettings::validation_error() const {
 
 StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, double dt,
                               const HardStepLossSettings& settings, const std::vector<bool>& warm_basis,
-                              std::vector<bool>* final_basis) {
+                              std::vector<bool>* final_basis, bool skip_exact_cold) {
   if (const std::string e = settings.validation_error(); !e.empty()) throw InputError("HardStepLossSettings: " + e);
   validate_step_loss_input(s, target, dt);
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
@@ -90,7 +90,7 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   // Solve: the lcp model's attempts (models/lcp_model_attempts.hpp), as the simulator does.
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   LcpModelAttempts attempts;
-  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts);
+  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts, skip_exact_cold);
   r.work = attempts.pivots;
   const LemkeSolver* sol = attempts.used;
   if (!has_solution(attempts.status)) {

@@ -14,7 +14,7 @@ double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
 }
 
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
-                            const std::vector<bool>& warm, LcpModelAttempts& out) {
+                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold) {
   out.solvers.clear();
   out.used = nullptr;
   out.source = LcpModelSource::exact;
@@ -108,8 +108,9 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     if (solved(&rp)) polish_on_q(rp, seed);
   }
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
-  //    basis, or cycle: capped), else the perturbed solution.
-  if (!solved(r)) r = &attempt(exact, lcp.q, nullptr);
+  //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
+  //    request when there is a perturbed solution (skip_exact_cold).
+  if (!solved(r) && !(skip_exact_cold && inexact)) r = &attempt(exact, lcp.q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;
     out.source = LcpModelSource::perturbed;

@@ -39,8 +39,13 @@ struct LcpModelAttempts {
 /// `settings` are the caller's (step 5; the earlier steps run them without Lemke's own
 /// retries); `warm` (size nc + 3nf, or empty) is the previous basis. s supplies the
 /// contact identities of the perturbation patterns (lcp_perturbation_pattern).
+/// `skip_exact_cold`: step 3 (Lemke on q from the all-w basis) is not run when step 1b or 2
+/// already gave a perturbed solution, which is then the answer (solved_inaccurate). For a
+/// caller that knows step 3 failed on this LCP, or one a little different, before: the hard
+/// loss re-solving a transition whose stored basis came from a perturbed answer, where step
+/// 3 was 94% of the pivots (300-body pile, bench/results/learn_scene_hard_stored_bases.txt).
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
-                            const std::vector<bool>& warm, LcpModelAttempts& out);
+                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false);
 
 /// max_i |min(z_i, (M z + q)_i)| on the unperturbed LCP, 0 for an empty one.
 double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z);
