@@ -1,6 +1,6 @@
 // How much of a pile island's KKT factorization two threads can share: a measured
-// prototype of the two-subdomain (one-level nested dissection) split that issue "both
-// cores on one island" asks about, before any solver is built on it.
+// prototype of the two-subdomain (one-level nested dissection) split of one island over two
+// cores, before any solver is built on it.
 //
 // The island: the largest one of a pile of --bodies polygons after --settle convex-model
 // steps (the simulator's defaults). Its matrix: the convex model's phase-2 QP in the lifted
