@@ -5,10 +5,12 @@
 // lcp JSON: status, n, error, pivots (lemke) or iterations (ipm), seconds, and message when
 // not solved; OUT: z, w, written only when solved (else a line on stderr says so).
 // fc2d JSON: status, contacts, error, seconds (lemke: pivots, crash_sweeps, crash_pivots,
-// start = guess | crash | cold); OUT: r, u (u = W r + q). fc2d is solved as the LCP of
-// lcp/fc2d_lcp.hpp; with --solver ipm that LCP must be monotone, which it generally is not:
-// then bad input (exit 2) saying so. Lemke starts by default from the basis suggested by
-// projected Gauss–Seidel sweeps (--crash pgs, lcp/fc2d_pgs.hpp; crash start of lemke.hpp).
+// purification_steps, start = guess | crash | cold); OUT: r, u (u = W r + q). fc2d is
+// solved as the LCP of lcp/fc2d_lcp.hpp; with --solver ipm that LCP must be monotone, which
+// it generally is not: then bad input (exit 2) saying so. Lemke starts by default from the
+// answer of projected Gauss–Seidel sweeps purified into a vertex basis (--crash purify,
+// lcp/fc2d_pgs.hpp; purified start of lemke.hpp), or from the basis that answer suggests
+// (--crash pgs; crash start of lemke.hpp).
 #include "cli_common.hpp"
 #include "cli_report.hpp"
 
@@ -31,7 +33,7 @@ struct LcpOptions {
   std::string file;
   std::string solver = "lemke";
   std::string solution;
-  std::string crash = "pgs";  // fc2d only
+  std::string crash = "purify";  // fc2d only
   int crash_sweeps = 50;
   bool json = false;
 };
@@ -98,7 +100,8 @@ int run_lcp(const LcpOptions& o) {
 }
 
 int run_fc2d(const LcpOptions& o) {
-  require_option(o.crash == "pgs" || o.crash == "none", "--crash", "must be pgs or none");
+  require_option(o.crash == "pgs" || o.crash == "purify" || o.crash == "none", "--crash",
+                 "must be pgs, purify or none");
   require_option(o.crash_sweeps >= 1 && o.crash_sweeps <= 100000, "--crash-sweeps", "must be in [1, 100000]");
   require_writable_file("--solution", o.solution);
   const io::Fc2dData d = io::read_siconos_fc2d(o.file);
@@ -106,9 +109,11 @@ int run_fc2d(const LcpOptions& o) {
   const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
   LcpResult r;
   int sweeps = 0;
-  if (o.solver == "lemke" && o.crash == "pgs") {
-    // Crash start (lemke.hpp): Lemke from the basis that PGS sweeps suggest (fc2d_pgs.hpp).
-    r = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, o.crash_sweeps, LemkeSettings{}, &sweeps);
+  if (o.solver == "lemke" && o.crash != "none") {
+    // Crash start (lemke.hpp): Lemke from the basis that PGS sweeps suggest (fc2d_pgs.hpp),
+    // or from their answer purified into a vertex basis first (--crash purify).
+    r = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, o.crash_sweeps, LemkeSettings{}, &sweeps,
+                               o.crash == "purify" ? Fc2dCrash::purified : Fc2dCrash::basis);
   } else {
     try {
       r = solve(lcp.M, lcp.q, o.solver);
@@ -131,6 +136,7 @@ int run_fc2d(const LcpOptions& o) {
     j["pivots"] = r.info.pivots;
     j["crash_sweeps"] = sweeps;
     j["crash_pivots"] = r.info.crash_pivots;
+    j["purification_steps"] = r.info.purification_steps;
     // How the solution was reached: the PGS basis was already the solution's (guess), Lemke
     // from it (crash), or from the all-w basis (cold: --crash none, or after a failed crash).
     j["start"] = r.info.warm_started                                      ? "guess"
@@ -163,10 +169,10 @@ Command add_command(CLI::App& parent, const char* name, const char* help, int (*
                        : "write z and w = M z + q to this JSON file (only when solved)");
   if (fc2d) {
     app->add_option("--crash", options->crash,
-                    "lemke's first basis: pgs (the one that projected Gauss-Seidel sweeps suggest) or none "
-                    "(Lemke's usual start)")
+                    "lemke's first basis: pgs (the one that projected Gauss-Seidel sweeps suggest), purify (their "
+                    "answer purified into a vertex basis first) or none (Lemke's usual start)")
         ->capture_default_str();
-    app->add_option("--crash-sweeps", options->crash_sweeps, "most Gauss-Seidel sweeps of --crash pgs")
+    app->add_option("--crash-sweeps", options->crash_sweeps, "most Gauss-Seidel sweeps of --crash pgs or purify")
         ->capture_default_str();
   }
   add_json_flag(*app, options->json);

@@ -97,7 +97,7 @@ TEST(CliBriefReportValues, JsonKeysAreUnchanged) {
   };
   EXPECT_EQ(keys(kQp), "status objective iterations primal_residual dual_residual duality_gap seconds ");
   EXPECT_EQ(keys(kLcp), "status n error pivots seconds ");
-  EXPECT_EQ(keys(kFc2d), "status contacts error seconds pivots crash_sweeps crash_pivots start ");
+  EXPECT_EQ(keys(kFc2d), "status contacts error seconds pivots crash_sweeps crash_pivots purification_steps start ");
   EXPECT_EQ(keys(kPile),
             "bodies contacts_max steps seconds_per_step max_penetration max_residual max_energy_gain model softening "
             "failed_islands inaccurate_islands seconds ");

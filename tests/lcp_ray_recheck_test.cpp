@@ -30,7 +30,9 @@ TEST(LemkeRayRecheck, InfeasibleLcpStillEndsInRayAfterTheRecheck) {
     EXPECT_EQ(r.info.status, LcpStatus::ray_termination) << r.info.message;
     EXPECT_GE(r.info.pivots, 1);
     EXPECT_LE(r.info.ray_rechecks, 1);  // one recheck at most: the ray ends the path
-    if (method == LemkeMethod::sparse) EXPECT_EQ(r.info.ray_rechecks, 1);
+    if (method == LemkeMethod::sparse) {
+      EXPECT_EQ(r.info.ray_rechecks, 1);
+    }
   }
 }
 

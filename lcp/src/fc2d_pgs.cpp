@@ -89,20 +89,31 @@ Fc2dPgsResult fc2d_pgs(const SparseMatrix& W, const Vector& q, const Vector& mu,
   return out;
 }
 
+Vector fc2d_lcp_point(const Vector& r, const Vector& u, const Vector& mu) {
+  const Index nc = mu.size();
+  if (r.size() != 2 * nc || u.size() != 2 * nc) throw InputError("fc2d LCP point: sizes of r, u and μ disagree");
+  Vector z(4 * nc);
+  for (Index c = 0; c < nc; ++c) {
+    const double rn = std::max(r(2 * c), 0.0), rt = r(2 * c + 1);
+    // On the cone's boundary (sliding, or r = 0: separated) w_λ = μr_n − |r_t| = 0 and λ =
+    // |u_t| makes w± = λ ± u_t ≥ 0; strictly inside (sticking) λ = 0.
+    const bool boundary = std::abs(rt) >= mu(c) * rn * (1.0 - 1e-9);
+    z(4 * c) = rn;
+    z(4 * c + 1) = std::max(rt, 0.0);
+    z(4 * c + 2) = std::max(-rt, 0.0);
+    z(4 * c + 3) = boundary ? std::abs(u(2 * c + 1)) : 0.0;
+  }
+  return z;
+}
+
 std::vector<bool> fc2d_basis_guess(const Vector& r, const Vector& u, const Vector& mu, const SparseMatrix& M_lcp,
                                    const Vector& q_lcp) {
   const Index nc = mu.size();
   if (r.size() != 2 * nc || u.size() != 2 * nc || M_lcp.rows() != 4 * nc || q_lcp.size() != 4 * nc)
     throw InputError("fc2d basis guess: sizes of r, u, μ and the LCP disagree");
-  Vector z(4 * nc);
-  for (Index c = 0; c < nc; ++c) {
-    const double rn = std::max(r(2 * c), 0.0), rt = r(2 * c + 1);
-    const bool sliding = rn > 0 && std::abs(rt) >= mu(c) * rn * (1.0 - 1e-9);
-    z(4 * c) = rn;
-    z(4 * c + 1) = std::max(rt, 0.0);
-    z(4 * c + 2) = std::max(-rt, 0.0);
-    z(4 * c + 3) = sliding ? std::abs(u(2 * c + 1)) : 0.0;
-  }
+  Vector z = fc2d_lcp_point(r, u, mu);
+  for (Index c = 0; c < nc; ++c)  // λ of separated contacts left at 0 (the crash paths measured so)
+    if (!(r(2 * c) > 0)) z(4 * c + 3) = 0.0;
   const Vector w = M_lcp * z + q_lcp;
   std::vector<bool> basis(static_cast<std::size_t>(4 * nc));
   for (Index i = 0; i < 4 * nc; ++i) basis[static_cast<std::size_t>(i)] = z(i) > w(i);
@@ -110,13 +121,15 @@ std::vector<bool> fc2d_basis_guess(const Vector& r, const Vector& u, const Vecto
 }
 
 LcpResult solve_fc2d_lemke_crash(const SparseMatrix& W, const Vector& q, const Vector& mu, const Fc2dLcp& lcp,
-                                 int sweeps, LemkeSettings settings, int* sweeps_done) {
+                                 int sweeps, LemkeSettings settings, int* sweeps_done, Fc2dCrash start) {
   const Fc2dPgsResult pgs = fc2d_pgs(W, q, mu, sweeps, 1e-12);
   if (sweeps_done) *sweeps_done = pgs.sweeps;
   settings.crash_start = true;
   LemkeSolver lemke(settings);
   lemke.setup(lcp.M, lcp.q);
-  lemke.warm_start(fc2d_basis_guess(pgs.r, pgs.u, mu, lcp.M, lcp.q));
+  const std::vector<bool> guess = fc2d_basis_guess(pgs.r, pgs.u, mu, lcp.M, lcp.q);
+  if (start == Fc2dCrash::purified) lemke.warm_start_point(fc2d_lcp_point(pgs.r, pgs.u, mu), guess);
+  else lemke.warm_start(guess);
   return lemke.solve();
 }
 

@@ -167,6 +167,19 @@ void LemkeSolver::update_q(const Vector& q) {
 void LemkeSolver::warm_start(const std::vector<bool>& z_basic) {
   if (static_cast<Index>(z_basic.size()) != impl_->n) throw InputError("LCP: warm-start basis has the wrong size");
   impl_->warm = z_basic;
+  impl_->warm_point.resize(0);
+  impl_->warm_fallback.clear();
+}
+
+void LemkeSolver::warm_start_point(const Vector& z, const std::vector<bool>& fallback) {
+  if (!impl_->is_setup) throw std::logic_error("LemkeSolver::warm_start_point before setup");
+  if (z.size() != impl_->n) throw InputError("LCP: warm-start point has the wrong size");
+  if (!z.allFinite()) throw InputError("LCP: warm-start point has a NaN or infinite entry");
+  if (!fallback.empty() && static_cast<Index>(fallback.size()) != impl_->n)
+    throw InputError("LCP: fallback basis of the warm-start point has the wrong size");
+  impl_->warm_point = z;
+  impl_->warm_fallback = fallback;
+  impl_->warm.clear();
 }
 
 const LcpResult& LemkeSolver::solve() {
@@ -174,8 +187,13 @@ const LcpResult& LemkeSolver::solve() {
   if (!m.is_setup) throw std::logic_error("LemkeSolver::solve before setup");
   const auto t0 = std::chrono::steady_clock::now();
   m.reset_result();
+  // Counted over the whole solve (its retries included), so reset here and not per retry.
+  m.result.info.ray_rechecks = 0;
+  m.result.info.purification_steps = 0;
   m.run();
   m.warm.clear();
+  m.warm_point.resize(0);
+  m.warm_fallback.clear();
   // Retries after a failure (ray termination, singular basis, pivot limit) of degenerate
   // problems, where roundoff sends the pivot path to a secondary ray (lcp_types.hpp):
   // first other covering vectors (another pivot path to the same LCP), then M + εI (as

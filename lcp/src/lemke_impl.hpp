@@ -3,6 +3,7 @@
 // - lemke.cpp: setup, the retries of solve(), the factorization of the current basis;
 // - lemke_pivot.cpp: the cold start, Lemke's pivots and the lexicographic ratio test;
 // - lemke_crash.cpp: the warm and crash starts and the repair of a singular warm basis;
+// - lemke_purify.cpp: the vertex basis of an approximate solution (warm_start_point);
 // - lemke_solution.cpp: the solution from the final basis, and backward().
 // Conventions (variable numbering, tableau) in lemke_basis.hpp; the method in lemke.hpp.
 #include <lcprelax/lcp/lemke.hpp>
@@ -29,6 +30,8 @@ struct LemkeSolver::Impl {
   bool is_setup = false;
   LemkeMethod method = LemkeMethod::dense;  // the basis in use (settled at setup)
   std::vector<bool> warm;
+  Vector warm_point;  // warm_start_point (user units); empty when none
+  std::vector<bool> warm_fallback;  // its fallback basis; empty: the one the point suggests
   LcpResult result;
   std::vector<Index> basic;  // variable per row: [0,n) w, [n,2n) z, 2n z0
   std::unique_ptr<detail::LemkeBasis> basis;
@@ -81,6 +84,13 @@ struct LemkeSolver::Impl {
   bool repair_warm_basis();
   bool try_crash_start();
   bool flip_infeasible(bool factorized);
+
+  // lemke_purify.cpp
+  bool purify_warm_point();
+  Index purify_ratio_row(double limit, Index prefer) const;
+  bool purify_exchange(Index r, Index entering, double value);
+  bool purify_pair_swap(Index ws, Index s, Index j);
+  bool purify_match_pairs(std::vector<Index>& position);
 
   // lemke_solution.cpp
   void extract_solution();

@@ -42,6 +42,7 @@ void LemkeSolver::Impl::run() {
     return finish(LcpStatus::solved, "empty problem");
   }
   long crash_pivots = 0;
+  if (warm_point.size() == n) purify_warm_point();  // sets `warm` (lemke_purify.cpp)
   if (!warm.empty()) {
     bool factorized = load_warm_basis();
     if (!factorized && settings.crash_start && repair_warm_basis()) factorized = load_warm_basis();

@@ -35,6 +35,11 @@ struct Fc2dPgsResult {
 /// Throws InputError on inconsistent sizes or negative μ.
 Fc2dPgsResult fc2d_pgs(const SparseMatrix& W, const Vector& q, const Vector& mu, int max_sweeps, double tolerance);
 
+/// The LCP point of reactions r (with u = W r + q): z = (r_n, r_t⁺, r_t⁻, λ) per contact
+/// with r_n clipped at 0, λ = |u_t| where the contact slides (|r_t| ≥ μ r_n·(1 − 1e-9),
+/// r_n > 0) and 0 elsewhere (size 4nc; LemkeSolver::warm_start_point takes it).
+Vector fc2d_lcp_point(const Vector& r, const Vector& u, const Vector& mu);
+
 /// The complementary basis of the LCP of fc2d_lcp.hpp suggested by reactions r (with u =
 /// W r + q): the LCP point z = (r_n, r_t⁺, r_t⁻, λ) with λ = |u_t| where the contact slides
 /// (|r_t| ≥ μ r_n·(1 − 1e-9), r_n > 0) and 0 elsewhere, w = Mz + q_lcp, and z_i basic where
@@ -42,11 +47,17 @@ Fc2dPgsResult fc2d_pgs(const SparseMatrix& W, const Vector& q, const Vector& mu,
 std::vector<bool> fc2d_basis_guess(const Vector& r, const Vector& u, const Vector& mu, const SparseMatrix& M_lcp,
                                    const Vector& q_lcp);
 
+/// How the PGS answer starts Lemke: `basis` = the basis it suggests (fc2d_basis_guess),
+/// `purified` = its LCP point purified into a vertex basis first (fc2d_lcp_point,
+/// LemkeSolver::warm_start_point).
+enum class Fc2dCrash { basis, purified };
+
 /// Lemke (lemke.hpp, `settings` with crash_start on) on `lcp` = fc2d_to_lcp(W, q, μ),
-/// started from the basis of `sweeps` PGS sweeps (tolerance 1e-12): the solution's basis
+/// started from `sweeps` PGS sweeps (tolerance 1e-12) as `start` says: the solution's basis
 /// when PGS found it (zero pivots), else a crash start, else the cold start. The PGS sweeps
 /// run are written to *sweeps_done when given.
 LcpResult solve_fc2d_lemke_crash(const SparseMatrix& W, const Vector& q, const Vector& mu, const Fc2dLcp& lcp,
-                                 int sweeps, LemkeSettings settings = {}, int* sweeps_done = nullptr);
+                                 int sweeps, LemkeSettings settings = {}, int* sweeps_done = nullptr,
+                                 Fc2dCrash start = Fc2dCrash::basis);
 
 }  // namespace lcprelax

@@ -143,6 +143,9 @@ struct LcpInfo {
   LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
   long refactorizations = 0;  ///< basis factorizations from scratch
   long ray_rechecks = 0;  ///< rays found with an updated factorization, rechecked after a fresh one
+  /// Steps of the purification of a warm-start point (LemkeSolver::warm_start_point,
+  /// lemke_purify.cpp): superbasic z_j driven to 0 or into the basis; not counted in pivots.
+  long purification_steps = 0;
   double regularization = 0.0;  ///< ε of the accepted retry on M + εI, 0 if none
 };
 

@@ -29,6 +29,19 @@
 // warm basis is the one the solver already holds factorized (the final basis of the
 // previous solve, M unchanged), it is not factorized again.
 //
+// Purified start (warm_start_point): an approximate solution z̃ of a degenerate LCP, e.g.
+// of a jammed pile whose contacts outnumber the bodies' degrees of freedom (an interior-
+// point or Gauss–Seidel answer that loads every contact), suggests a basis {z_j : z̃_j >
+// w̃_j} that is singular, and dropping its dependent columns (the repair above) makes the
+// basic solution infeasible. Purification instead moves the point along directions that
+// keep w = Mz + q: the dependent z_j (superbasic) are driven to zero one at a time, and a
+// basic variable that reaches zero first leaves the basis for it, until the z-columns with
+// nonzero values are independent (the crossover of interior-point LP codes: Megiddo, "On
+// finding primal- and dual-optimal bases", ORSA J. Comput. 3, 1991; Bixby & Saltzman,
+// "Recovering an optimal LP basis from an interior point solution", Oper. Res. Lett. 15,
+// 1994). Cost: one column solve and basis update per superbasic variable, like a pivot
+// (LcpInfo::purification_steps; not counted in pivots). Allocates (a crash start only).
+//
 // Memory: setup() sizes everything the solver works with (the basis factorization's
 // arrays, x_B, the solved entering column, the ratio-test row lists, the tie-break buffers:
 // 4n nonzeros of B⁻¹ rows, or with full rows n columns dense, min(n, 64) sparse). A
@@ -67,6 +80,14 @@ class LemkeSolver {
   void update_q(const Vector& q);
   /// Basis to try first in the next solve() (size n; true = z_i basic).
   void warm_start(const std::vector<bool>& z_basic);
+  /// Approximate solution z (size n, user units, finite; negative entries count as 0) to
+  /// start the next solve() from: it is purified into a vertex basis (below), which is
+  /// then used as a warm_start basis (crash start when LemkeSettings::crash_start is on).
+  /// Where purification does not end in a complementary basis, `fallback` (size n; empty:
+  /// {z_j : z_j > w_j}, the basis the point suggests) is used instead. Replaces a
+  /// warm_start basis given before; requires setup() (throws std::logic_error, and
+  /// InputError on a wrong size or a non-finite entry).
+  void warm_start_point(const Vector& z, const std::vector<bool>& fallback = {});
   const LcpResult& solve();
   /// Gradient of ℓ(z) given ∂ℓ/∂z; requires status solved (else std::logic_error).
   LcpGradient backward(const Vector& dl_dz) const;
