@@ -17,7 +17,9 @@
 //         667-contact granular problem), lcprelax_sparse (both on fc2d_to_lcp, 4nc
 //         unknowns), lcprelax_crash (sparse, crash-started from 50 projected Gauss–Seidel
 //         sweeps, lcp/fc2d_pgs.hpp, their time included; with LemkeSettings::crash_flip_rounds
-//         as by default, and lcprelax_crash_noflip with 0), siconos_fc2d_lemke (SICONOS_FRICTION_2D_LEMKE, its own 3nc-unknown
+//         as by default, and lcprelax_crash_noflip with 0), lcprelax_purify (the same PGS
+//         answer purified into a vertex basis first: Fc2dCrash::purified, the default of
+//         `lcprelax fc2d`), siconos_fc2d_lemke (SICONOS_FRICTION_2D_LEMKE, its own 3nc-unknown
 //         LCP), siconos_fc2d_nsgs (SICONOS_FRICTION_2D_NSGS, tolerance 1e-10).
 // Every answer is scored with lcprelax::io::lcp_error / io::fc2d_error, i.e. the error as
 // Siconos defines it, recomputed from the returned z (LCP) or r (fc2d, u = W r + q):
@@ -219,6 +221,16 @@ void run_fc2d(const std::string& name, const lcprelax::io::Fc2dData& d, const Op
                                                 lemke_settings(lcprelax::LemkeMethod::sparse, opt.refactor_interval));
       },
       lcp_error));
+  // Sparse Lemke from the same PGS answer purified into a vertex basis (the default of
+  // `lcprelax fc2d`; lemke.hpp's purified start), its time included.
+  out.push_back(lcprelax_row(
+      "lcprelax_purify",
+      [&] {
+        return lcprelax::solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50,
+                                                lemke_settings(lcprelax::LemkeMethod::sparse, opt.refactor_interval),
+                                                nullptr, lcprelax::Fc2dCrash::purified);
+      },
+      lcp_error));
   // The same crash start without the block principal pivoting rounds (before/after).
   out.push_back(lcprelax_row(
       "lcprelax_crash_noflip",
@@ -324,7 +336,7 @@ int main(int argc, char** argv) {
   }
   std::printf("\nsummary (ok = status solved and error_scaled <= %.0e):\n", kTarget);
   for (const char* s :
-       {"lcprelax_dense", "lcprelax_sparse", "lcprelax_crash", "lcprelax_crash_noflip", "siconos_lemke",
+       {"lcprelax_dense", "lcprelax_sparse", "lcprelax_crash", "lcprelax_purify", "lcprelax_crash_noflip", "siconos_lemke",
         "siconos_fc2d_lemke", "siconos_fc2d_nsgs"}) {
     int total = 0, ok = 0;
     for (const Row& r : rows)

@@ -19,16 +19,22 @@
 // The ratio test is Harris' two-pass test (Harris, "Pivot selection methods of the Devex
 // LP code", Math. Prog. 5, 1973) with the complement w_s preferred among the ties; pivots
 // below 1e-9·‖a‖∞ are refused, so the basis stays as well conditioned as the point allows.
-// Where z_s displaces another basic z_j (z_j → 0), w_j is pivoted in for w_s when its
-// pivot allows (a degenerate exchange: both are zero), which keeps the basis complementary.
-// The basis handed to the warm start is {z_j basic}; negative basic values that remain
-// (where z̃ was infeasible) are left to the crash path.
+// Where z_s displaces a member of another pair j (which then has no basic member while
+// pair s has both), w_j or z_j is pivoted into w_s's row when its pivot allows and the
+// move stays below kDegenerateMove (degenerate for a consistent point: w_s ≈ 0); else
+// complementary pivots as in Lemke's method, with z_s in the role of the artificial
+// variable, run until a member of pair s leaves (purify_path). Pairs still left with both
+// members basic are finally matched with pairs with neither (purify_match_pairs). The basis
+// handed to the warm start is {z_j basic} when every pair has one basic member, else the
+// fallback; negative basic values that remain (where z̃ was inconsistent) are left to the
+// crash path.
 // Units: normalized (q/‖q‖∞, lemke_impl.hpp); pivot tolerance `tol`, feasibility
 // tolerance kFeasibility (values are O(1) in these units).
 #include "lemke_impl.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace lcprelax {
@@ -42,6 +48,8 @@ constexpr double kPreferComplement = 1e-2;  // |a| of w_s against the largest ti
 // larger move comes from a tiny pivot and leaves garbage (measured on a polygon pile's
 // fc2d problem from a 50-sweep PGS point: basic values of −4.6e4 without the bound).
 constexpr double kDegenerateMove = 1.0;
+// Most complementary pivots of one path (purify_path) before it is given up.
+constexpr int kPathPivots = 50;
 }  // namespace
 
 // Harris' ratio test for lowering a superbasic variable by at most `limit`: the row that
@@ -79,6 +87,52 @@ bool LemkeSolver::Impl::purify_exchange(Index r, Index entering, double value) {
   if (!ok) return false;
   factored_basic = basic;
   factor_current = true;
+  return true;
+}
+
+// Complementary pivots after z_s displaced another pair's member v (z_s and w_s both
+// basic, v and its complement both nonbasic): as in Lemke's method, with z_s in the role of
+// the artificial z₀, the complement of the variable that left enters and the ratio test
+// picks the next to leave, until a member of pair s leaves (then every pair has exactly one
+// basic member again) or kPathPivots pivots or a ray end the path with pair s left as it
+// is. An entering z_k that is still superbasic enters at its value plus the step. Ties
+// are broken towards pair s (as Lemke's towards z₀), then towards the largest pivot
+// (Harris). False if the basis became singular.
+bool LemkeSolver::Impl::purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position) {
+  Index entering = complement(leaving, n);
+  for (int step = 0; step < kPathPivots; ++step) {
+    basis->solve_column(entering, a);  // x_B(θ) = x_B − θ·a as the entering variable rises by θ
+    if (!a.allFinite()) return false;
+    const double ptol = std::max(tol, kRelativePivot * a.lpNorm<Eigen::Infinity>());
+    double relaxed = std::numeric_limits<double>::infinity();
+    for (Index k = 0; k < n; ++k)
+      if (a(k) > ptol) relaxed = std::min(relaxed, (std::max(xB(k), 0.0) + kFeasibility) / a(k));
+    Index r = -1;
+    bool r_in_pair = false;
+    for (Index k = 0; k < n; ++k) {
+      if (!(a(k) > ptol) || std::max(xB(k), 0.0) / a(k) > relaxed) continue;
+      const bool in_pair = basic[k] == s || basic[k] == n + s;
+      if (r < 0 || (in_pair && !r_in_pair) || (in_pair == r_in_pair && a(k) > a(r))) {
+        r = k;
+        r_in_pair = in_pair;
+      }
+    }
+    if (r < 0) return true;  // a ray: pair s stays with both members
+    const double theta = std::max(xB(r), 0.0) / a(r);
+    xB.noalias() -= theta * a;
+    double value = theta;
+    if (entering >= n && z_super(entering - n) > 0.0) {
+      value += z_super(entering - n);
+      z_super(entering - n) = 0.0;
+    }
+    const Index left = basic[r];
+    position[static_cast<std::size_t>(left)] = -1;
+    position[static_cast<std::size_t>(entering)] = r;
+    ++result.info.purification_steps;
+    if (!purify_exchange(r, entering, value)) return false;
+    if (left == s || left == n + s) return true;
+    entering = complement(left, n);
+  }
   return true;
 }
 
@@ -193,9 +247,8 @@ bool LemkeSolver::Impl::purify_warm_point() {
       ok = false;
       break;
     }
-    // z_s displaced another pair's member (z_j or w_j, now zero), which leaves pair j
-    // without a basic variable and pair s with both: w_j, else z_j, takes w_s's row when
-    // the pivot allows (a degenerate exchange: w_s and the entering value are near zero).
+    // z_s displaced another pair's member (now zero), which leaves that pair without a
+    // basic variable and pair s with both: complementary pivots restore one per pair.
     const Index j = leaving < n ? leaving : leaving - n;
     if (j != s && ws >= 0) {
       if (!purify_pair_swap(ws, s, j)) {
@@ -205,6 +258,9 @@ bool LemkeSolver::Impl::purify_warm_point() {
       if (basic[ws] != s) {
         position[static_cast<std::size_t>(s)] = -1;
         position[static_cast<std::size_t>(basic[ws])] = ws;
+      } else if (!purify_path(s, leaving, z_super, position)) {
+        ok = false;
+        break;
       }
     }
   }

@@ -54,6 +54,7 @@ struct PyLcpResult {
   long crash_pivots, tie_breaks, refactorizations, ray_rechecks;
   int repair_rounds;
   double regularization;
+  long purification_steps;
 };
 
 struct PyLcpGradient {
@@ -92,6 +93,19 @@ class PyLemkeSolver {
     solver_.warm_start(basis);
   }
 
+  void warm_start_point(const py::object& z, const py::object& fallback) {
+    if (n_ < 0) throw std::logic_error("LemkeSolver.warm_start_point() before setup()");
+    const Vector zv = to_vector(z, "z", n_, "rows of M");
+    std::vector<bool> basis;
+    if (!fallback.is_none()) {
+      basis = to_bool_vector(fallback, "fallback");
+      if (static_cast<Index>(basis.size()) != n_)
+        throw InputError("fallback has length " + std::to_string(basis.size()) + ", expected " + std::to_string(n_));
+    }
+    Busy busy(mutex_, "LemkeSolver");
+    solver_.warm_start_point(zv, basis);
+  }
+
   PyLcpResult solve() {
     Busy busy(mutex_, "LemkeSolver");
     const LcpResult* r = nullptr;
@@ -105,7 +119,7 @@ class PyLemkeSolver {
     return {to_string(i.status), i.message,   to_string(i.method), to_numpy(r->z),     to_numpy(r->w),
             basic,           i.pivots,    i.complementarity,   i.seconds,          has_solution(i.status),
             i.warm_started,  i.crash_started, i.crash_pivots,  i.tie_breaks,       i.refactorizations,
-            i.ray_rechecks,  i.repair_rounds, i.regularization};
+            i.ray_rechecks,  i.repair_rounds, i.regularization,   i.purification_steps};
   }
 
   PyLcpGradient backward(const py::object& dl_dz) {
@@ -157,6 +171,8 @@ void bind_lcp(py::module_& m) {
                     "rounds of repair of a singular crash basis")
       .def_readonly("regularization", &PyLcpResult::regularization,
                     "ε of an accepted retry on M + εI (then the answer solves that LCP), 0 if none")
+      .def_readonly("purification_steps", &PyLcpResult::purification_steps,
+                    "steps of the purification of a warm_start_point (not counted in pivots)")
       .def("__repr__", [](const PyLcpResult& r) {
         return "LcpResult(status='" + r.status + "', pivots=" + std::to_string(r.pivots) +
                ", complementarity=" + std::string(py::repr(py::float_(r.complementarity))) + ")";
@@ -177,6 +193,9 @@ void bind_lcp(py::module_& m) {
            "Validates the LCP w = Mz + q, 0 <= z _|_ w >= 0 (M: n x n scipy.sparse; q: 1-D float array)")
       .def("update_q", &PyLemkeSolver::update_q, py::arg("q"), "new q of the same size, M kept")
       .def("warm_start", &PyLemkeSolver::warm_start, py::arg("z_basic"), "basis to try first (bool array, n)")
+      .def("warm_start_point", &PyLemkeSolver::warm_start_point, py::arg("z"), py::arg("fallback") = py::none(),
+           "approximate solution (float array, n) to purify into a vertex basis and start from; fallback: "
+           "the basis (bool array, n) used where purification does not end complementary")
       .def("solve", &PyLemkeSolver::solve, "Runs Lemke's method; returns an LcpResult (copies)")
       .def("backward", &PyLemkeSolver::backward, py::arg("dl_dz"),
            "Given dl/dz returns an LcpGradient (dl/dM, dl/dq); needs status solved (else UsageError)")

@@ -89,6 +89,28 @@ def test_diagnostics_of_a_crash_path():
     assert r.regularization == 0.0
 
 
+def test_warm_start_point_purifies_a_degenerate_solution():
+    # M = J J^T (6 x 6, rank 2) and a solution loading every row: purification keeps w and
+    # finds a vertex solution (at most 2 basic z) without a pivot.
+    rng = np.random.default_rng(4)
+    J = rng.standard_normal((6, 2))
+    Md = J @ J.T
+    z = rng.uniform(0.5, 2.0, 6)
+    q = -Md @ z
+    solver = lcprelax.LemkeSolver()
+    solver.setup(sp.csc_matrix(Md), q)
+    solver.warm_start_point(z)
+    r = solver.solve()
+    assert r.status == "solved", r.message
+    assert r.warm_started and r.pivots == 0 and r.purification_steps > 0
+    assert np.count_nonzero(r.z_basic) <= 2
+    check_complementary(Md, q, r, tol=1e-9)
+    with pytest.raises(lcprelax.InputError):
+        solver.warm_start_point(z[:5])
+    with pytest.raises(lcprelax.InputError):
+        solver.warm_start_point(z, np.zeros(5, dtype=bool))
+
+
 def test_lemke_settings():
     solver = lcprelax.LemkeSolver(method="sparse", max_pivots=100, covering=np.ones(3))
     assert solver.settings["method"] == "sparse" and solver.settings["max_pivots"] == 100
