@@ -182,20 +182,20 @@ def lemke(results):
     out = [("Lemke on the Siconos LCP test files",
             f"lcprelax {ours} / {len(files)}, Siconos numerics' Lemke {theirs} / {len(files)}", "",
             src(name))]
-    fc2d = [r for r in rows if r["kind"] == "fc2d" and r["solver"] == "lcprelax_crash"]
+    fc2d = [r for r in rows if r["kind"] == "fc2d" and r["solver"] == "lcprelax_purify"]
     for r in sorted(fc2d, key=lambda r: -int(r["contacts"]))[:2]:
         t = float(r["seconds"])
         lem = only(rows, name, problem=r["problem"], solver="siconos_fc2d_lemke")
         nsgs = only(rows, name, problem=r["problem"], solver="siconos_fc2d_nsgs")
         ok = "solved" if r["ok"] == "1" else f"not solved ({r['status']})"
-        out.append((f"fc2d `{r['problem']}` ({int(r['contacts']):,} contacts), Lemke from a PGS crash basis",
+        out.append((f"fc2d `{r['problem']}` ({int(r['contacts']):,} contacts), Lemke from a purified PGS start",
                     f"lcprelax {ok} in {seconds(t)}; time / Siconos Lemke {g(t / float(lem['seconds']), 2)} "
                     f"({seconds(lem['seconds'])}), / Siconos NSGS {g(t / float(nsgs['seconds']), 2)} "
                     f"({seconds(nsgs['seconds'])})", "", src(name)))
-    big = "lemke_crash_flip_2020.csv"
-    r = only(read_csv(results, big), big, problem="fc2d_granularflowonwall_02020_00213", solver="lcprelax_crash")
+    big = "lemke_purify_2020.csv"
+    r = only(read_csv(results, big), big, problem="fc2d_granularflowonwall_02020_00213", solver="lcprelax_purify")
     t = float(r["seconds"])
-    out.append(("fc2d `fc2d_granularflowonwall_02020_00213` (2,020 contacts), Lemke from a PGS crash basis, "
+    out.append(("fc2d `fc2d_granularflowonwall_02020_00213` (2,020 contacts), Lemke from a purified PGS start, "
                 "Siconos fc2d error ≤ 1e-10",
                 f"{'solved' if r['ok'] == '1' else 'not solved (' + r['status'] + ')'} in {seconds(t)} "
                 f"({int(r['iterations']):,} pivots, error {g(r['error'])})",
