@@ -90,7 +90,7 @@ struct LemkeSolver::Impl {
   Index purify_ratio_row(double limit, Index prefer) const;
   bool purify_exchange(Index r, Index entering, double value);
   bool purify_pair_swap(Index ws, Index s, Index j);
-  bool purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position);
+  bool purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position, long& budget);
   bool purify_match_pairs(std::vector<Index>& position);
 
   // lemke_solution.cpp

@@ -48,8 +48,11 @@ constexpr double kPreferComplement = 1e-2;  // |a| of w_s against the largest ti
 // larger move comes from a tiny pivot and leaves garbage (measured on a polygon pile's
 // fc2d problem from a 50-sweep PGS point: basic values of −4.6e4 without the bound).
 constexpr double kDegenerateMove = 1.0;
-// Most complementary pivots of one path (purify_path) before it is given up.
+// Most complementary pivots of one path (purify_path) before it is given up, and of all
+// paths of one purification per unknown (bounds its cost at a few solves per unknown on
+// problems where the paths keep failing).
 constexpr int kPathPivots = 50;
+constexpr double kPathPivotsPerUnknown = 1.0;
 }  // namespace
 
 // Harris' ratio test for lowering a superbasic variable by at most `limit`: the row that
@@ -94,13 +97,15 @@ bool LemkeSolver::Impl::purify_exchange(Index r, Index entering, double value) {
 // basic, v and its complement both nonbasic): as in Lemke's method, with z_s in the role of
 // the artificial z₀, the complement of the variable that left enters and the ratio test
 // picks the next to leave, until a member of pair s leaves (then every pair has exactly one
-// basic member again) or kPathPivots pivots or a ray end the path with pair s left as it
-// is. An entering z_k that is still superbasic enters at its value plus the step. Ties
+// basic member again), or kPathPivots pivots, the purification's `budget` (counted down
+// here) or a ray end the path with pair s left as it is. An entering z_k that is still
+// superbasic enters at its value plus the step. Ties
 // are broken towards pair s (as Lemke's towards z₀), then towards the largest pivot
 // (Harris). False if the basis became singular.
-bool LemkeSolver::Impl::purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position) {
+bool LemkeSolver::Impl::purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position,
+                                    long& budget) {
   Index entering = complement(leaving, n);
-  for (int step = 0; step < kPathPivots; ++step) {
+  for (int step = 0; step < kPathPivots && budget > 0; ++step, --budget) {
     basis->solve_column(entering, a);  // x_B(θ) = x_B − θ·a as the entering variable rises by θ
     if (!a.allFinite()) return false;
     const double ptol = std::max(tol, kRelativePivot * a.lpNorm<Eigen::Infinity>());
@@ -226,6 +231,7 @@ bool LemkeSolver::Impl::purify_warm_point() {
   std::vector<Index> position(static_cast<std::size_t>(2 * n), -1);  // basis row of each variable
   for (Index k = 0; k < n; ++k) position[static_cast<std::size_t>(k)] = k;
   bool ok = true;
+  long path_budget = static_cast<long>(kPathPivotsPerUnknown * static_cast<double>(n)) + kPathPivots;
   for (Index s : order) {
     basis->solve_column(n + s, a);
     if (!a.allFinite()) {
@@ -258,7 +264,7 @@ bool LemkeSolver::Impl::purify_warm_point() {
       if (basic[ws] != s) {
         position[static_cast<std::size_t>(s)] = -1;
         position[static_cast<std::size_t>(basic[ws])] = ws;
-      } else if (!purify_path(s, leaving, z_super, position)) {
+      } else if (!purify_path(s, leaving, z_super, position, path_budget)) {
         ok = false;
         break;
       }
