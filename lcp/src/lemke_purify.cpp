@@ -99,9 +99,9 @@ bool LemkeSolver::Impl::purify_exchange(Index r, Index entering, double value) {
 // picks the next to leave, until a member of pair s leaves (then every pair has exactly one
 // basic member again), or kPathPivots pivots, the purification's `budget` (counted down
 // here) or a ray end the path with pair s left as it is. An entering z_k that is still
-// superbasic enters at its value plus the step. Ties
-// are broken towards pair s (as Lemke's towards z₀), then towards the largest pivot
-// (Harris). False if the basis became singular.
+// superbasic enters at its value plus the step. Ties are broken towards pair s (as
+// Lemke's towards z₀), then towards the largest pivot (Harris). False if the basis became
+// singular.
 bool LemkeSolver::Impl::purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position,
                                     long& budget) {
   Index entering = complement(leaving, n);
