@@ -27,10 +27,7 @@ void LemkeSolver::Impl::allocate() {
   const bool dense = settings.method == LemkeMethod::dense ||
                      (settings.method == LemkeMethod::automatic && n <= settings.dense_max_n);
   method = dense ? LemkeMethod::dense : LemkeMethod::sparse;
-  const detail::LemkeColumns cols{&M, &d, n};
-  basis = dense ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
-                : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns);
-  factor_current = false;
+  new_basis();
   basic.assign(static_cast<std::size_t>(n), 0);
   factored_basic.assign(static_cast<std::size_t>(n), -1);
   xB.resize(n);
@@ -50,6 +47,16 @@ void LemkeSolver::Impl::allocate() {
   ties.reserve(n, dense ? n : std::min<Index>(n, detail::kMaxSchurUpdates));
   warm.reserve(static_cast<std::size_t>(n));
   result.z_basic.reserve(static_cast<std::size_t>(n));
+}
+
+// A fresh basis object for `method`: no factorization, and none of the adaptive state of
+// earlier solves (the sparse basis' running column density, lemke_basis_sparse.cpp).
+void LemkeSolver::Impl::new_basis() {
+  const detail::LemkeColumns cols{&M, &d, n};
+  basis = method == LemkeMethod::dense
+              ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
+              : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns);
+  factor_current = false;
 }
 
 // No z, w, z_basic or residual in the result; z and w become empty, their storage parked

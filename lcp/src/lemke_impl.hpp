@@ -57,6 +57,7 @@ struct LemkeSolver::Impl {
   // lemke.cpp
   void set_q(const Vector& q_in);
   void allocate();
+  void new_basis();
   void reset_result();
   void discard_solution();
   void take(Vector& v, Vector& spare) const;
@@ -87,6 +88,7 @@ struct LemkeSolver::Impl {
 
   // lemke_purify.cpp
   bool purify_warm_point();
+  bool purify_into_warm();
   Index purify_ratio_row(double limit, Index prefer) const;
   bool purify_exchange(Index r, Index entering, double value);
   bool purify_pair_swap(Index ws, Index s, Index j);

@@ -215,6 +215,17 @@ bool LemkeSolver::Impl::purify_match_pairs(std::vector<Index>& position) {
 // w̃_j}, the basis the point suggests) when the basis became singular, the values
 // non-finite, or a pair is left with both members basic.
 bool LemkeSolver::Impl::purify_warm_point() {
+  const bool ok = purify_into_warm();
+  // The warm start then runs on a fresh basis object, as it would on a fresh solver given
+  // the purified basis: the pivots after a purification do not depend on its solves (the
+  // sparse basis adapts its solves to the density of the columns it has seen; on a
+  // 2,336-contact polygon pile the cold path after a failed purification took 658,883
+  // pivots to its ray against 191,655 without this).
+  new_basis();
+  return ok;
+}
+
+bool LemkeSolver::Impl::purify_into_warm() {
   const Vector zt = (warm_point / q_norm).cwiseMax(0.0);
   Vector z_super = zt;
   xB = q;
