@@ -64,9 +64,11 @@ void report(const LcpOptions& o, const Json& j) {
   if (j.contains("iterations")) r.add_count("iterations", j["iterations"].get<long long>(), "(interior point)");
   if (j.contains("pivots")) r.add_count("pivots", j["pivots"].get<long long>(), "(Lemke)");
   if (j.contains("start")) {
+    const long long purified = j.value("purification_steps", 0LL);
     r.add("start", j["start"].get<std::string>() + " (" + std::to_string(j["crash_sweeps"].get<int>()) +
-                       " Gauss-Seidel sweeps, " + std::to_string(j["crash_pivots"].get<long long>()) +
-                       " pivots from their basis)");
+                       " Gauss-Seidel sweeps, " +
+                       (purified > 0 ? std::to_string(purified) + " purification steps, " : std::string()) +
+                       std::to_string(j["crash_pivots"].get<long long>()) + " pivots from their basis)");
   }
   r.add("time", number("seconds"), "s", 3);
   r.print();

@@ -76,6 +76,14 @@ TEST(CliBriefReportValues, StatusAndNumbersWithUnits) {
   EXPECT_EQ(report_value(r.out, "status"), "ray_termination") << r.out;
   EXPECT_EQ(report_value(r.out, "Siconos error"), "n/a") << r.out;
   EXPECT_NE(report_value(r.out, "message"), "(no line message)") << r.out;
+  // fc2d from the purified start (the default): FrictionContactProblem00071 needs no pivot
+  // after its purification steps (185 measured); with --crash pgs the line has none.
+  r = run_cli(kFc2d);
+  const std::string start = report_value(r.out, "start");
+  EXPECT_EQ(start.rfind("guess (50 Gauss-Seidel sweeps, ", 0), 0u) << r.out;
+  EXPECT_NE(start.find(" purification steps, 0 pivots from their basis)"), std::string::npos) << r.out;
+  r = run_cli(kFc2d + " --crash pgs");
+  EXPECT_EQ(report_value(r.out, "start").find("purification"), std::string::npos) << r.out;
   r = run_cli(kPile);
   EXPECT_EQ(report_value(r.out, "status"), "ok") << r.out;
   EXPECT_EQ(report_value(r.out, "bodies"), "10") << r.out;
