@@ -64,16 +64,6 @@ TEST(KluZeroPivotColumns, NamesTheDependentColumn) {
   EXPECT_TRUE(klu2.zero_pivot_columns(T, 1e-10).empty());
 }
 
-// Siconos' error on the problem scaled to ‖q‖₂ = 1 (tiny-q problems are otherwise absolute).
-double scaled_error(const io::Fc2dData& d, const Vector& z) {
-  Vector r, u;
-  fc2d_from_lcp(z, d.W, d.q, r, u);
-  io::Fc2dData s = d;
-  const double norm = d.q.norm() > 0 ? d.q.norm() : 1.0;
-  s.q /= norm;
-  return io::fc2d_error(s, r / norm);
-}
-
 TEST(Fc2dPgs, ConvergesAndItsExactBasisIsTheSolutions) {
   const io::Fc2dData d = io::read_siconos_fc2d(kFc2d + "FrictionContactProblem00071.dat");
   const Fc2dPgsResult pgs = fc2d_pgs(d.W, d.q, d.mu, 2000, 1e-14);
@@ -105,10 +95,10 @@ TEST(LemkeCrashStart, SolvesEverySiconosFc2dFileWithNoMorePivots) {
     cold.setup(lcp.M, lcp.q);
     const LcpResult c = cold.solve();
     ASSERT_EQ(c.info.status, LcpStatus::solved) << c.info.message;
-    EXPECT_LE(scaled_error(d, c.z), 1e-10);
+    EXPECT_LE(test::scaled_fc2d_error(d, c.z), 1e-10);
     const LcpResult r = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50);
     ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
-    EXPECT_LE(scaled_error(d, r.z), 1e-10);
+    EXPECT_LE(test::scaled_fc2d_error(d, r.z), 1e-10);
     EXPECT_LE(r.info.pivots, c.info.pivots);
     if (std::string(name).rfind("fc2d_granularflowonwall", 0) == 0) {
       EXPECT_TRUE(r.info.crash_started);

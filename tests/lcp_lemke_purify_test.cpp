@@ -124,16 +124,6 @@ TEST(LemkePurify, BackwardDifferentiatesTheFinalBasis) {
   test::expect_q_gradient_matches_central_differences(p, g);
 }
 
-// Siconos' error on the problem scaled to ‖q‖₂ = 1 (tiny-q problems are otherwise absolute).
-double scaled_fc2d_error(const io::Fc2dData& d, const Vector& z) {
-  Vector r, u;
-  fc2d_from_lcp(z, d.W, d.q, r, u);
-  io::Fc2dData s = d;
-  const double norm = d.q.norm() > 0 ? d.q.norm() : 1.0;
-  s.q /= norm;
-  return io::fc2d_error(s, r / norm);
-}
-
 TEST(LemkePurify, Fc2dFilesFromPgsPoints) {
   const std::string dir = std::string(LCPRELAX_TEST_DATA_DIR);
   struct Case {
@@ -153,7 +143,7 @@ TEST(LemkePurify, Fc2dFilesFromPgsPoints) {
     const LcpResult b = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50, {}, nullptr, Fc2dCrash::basis);
     const LcpResult r = solve_fc2d_lemke_crash(d.W, d.q, d.mu, lcp, 50, {}, nullptr, Fc2dCrash::purified);
     ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
-    EXPECT_LE(scaled_fc2d_error(d, r.z), 1e-10);
+    EXPECT_LE(test::scaled_fc2d_error(d, r.z), 1e-10);
     EXPECT_GT(r.info.purification_steps, 0);
     EXPECT_LE(r.info.pivots, b.info.pivots);
     if (c.most_pivots >= 0) {

@@ -1,7 +1,10 @@
 #pragma once
-// Shared pieces of the Lemke crash-start tests (lcp_crash_start_test, lcp_crash_flip_test):
-// a P-matrix LCP with a perturbed right-hand side to take a crash basis from, and the
-// central-difference check of ∂(wᵀz)/∂q.
+// Shared pieces of the Lemke crash-start tests (lcp_crash_start_test, lcp_crash_flip_test,
+// lcp_lemke_purify_test): a P-matrix LCP with a perturbed right-hand side to take a crash
+// basis from, the central-difference check of ∂(wᵀz)/∂q, and Siconos' fc2d error of an LCP
+// solution on the problem scaled to ‖q‖₂ = 1.
+#include <lcprelax/io/siconos_errors.hpp>
+#include <lcprelax/lcp/fc2d_lcp.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
 #include <gtest/gtest.h>
@@ -56,6 +59,17 @@ inline void expect_q_gradient_matches_central_differences(const PMatrixLcp& p, c
     const double fd = (p.w.dot(a.z) - p.w.dot(b.z)) / (2 * h);
     EXPECT_NEAR(grad(k), fd, 1e-6 * (1.0 + std::abs(fd))) << "q entry " << k;
   }
+}
+
+/// Siconos' fc2d error of the LCP solution z (fc2d_to_lcp's layout) on the problem scaled to
+/// ‖q‖₂ = 1 (tiny-q problems are otherwise absolute).
+inline double scaled_fc2d_error(const io::Fc2dData& d, const Vector& z) {
+  Vector r, u;
+  fc2d_from_lcp(z, d.W, d.q, r, u);
+  io::Fc2dData s = d;
+  const double norm = d.q.norm() > 0 ? d.q.norm() : 1.0;
+  s.q /= norm;
+  return io::fc2d_error(s, r / norm);
 }
 
 }  // namespace lcprelax::test

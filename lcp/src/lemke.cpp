@@ -93,21 +93,26 @@ void LemkeSolver::Impl::take(Vector& v, Vector& spare) const {
   v.resize(n);
 }
 
+// Factorizes B for `basic` from scratch (counted, with the refactorization hook around it);
+// false if B is singular.
+bool LemkeSolver::Impl::factorize_basic() {
+  ++result.info.refactorizations;
+  factor_current = false;
+  if (refactor_hook) refactor_hook(true);
+  const bool ok = basis->refactor(basic);
+  if (refactor_hook) refactor_hook(false);
+  if (!ok) return false;
+  factored_basic = basic;
+  factor_current = true;
+  return true;
+}
+
 // Factorizes the current basis (unless the factorization already holds it) and sets
 // x_B = B⁻¹q with up to two steps of iterative refinement (r = q − B x_B; KLU's
 // threshold pivoting and ill-conditioned bases of resting-contact problems with
 // ‖q‖ ~ 1e-19 need them); false if B is singular.
 bool LemkeSolver::Impl::refactor(Vector& x) {
-  if (!factor_current || basic != factored_basic) {
-    ++result.info.refactorizations;
-    factor_current = false;
-    if (refactor_hook) refactor_hook(true);
-    const bool ok = basis->refactor(basic);
-    if (refactor_hook) refactor_hook(false);
-    if (!ok) return false;
-    factored_basic = basic;
-    factor_current = true;
-  }
+  if ((!factor_current || basic != factored_basic) && !factorize_basic()) return false;
   x = q;
   basis->solve(x);
   if (!x.allFinite()) return false;

@@ -62,6 +62,7 @@ struct LemkeSolver::Impl {
   void discard_solution();
   void take(Vector& v, Vector& spare) const;
   bool refactor(Vector& x);
+  bool factorize_basic();
   void finish(LcpStatus status, const char* message) {
     result.info.status = status;
     result.info.message = message;
@@ -91,7 +92,8 @@ struct LemkeSolver::Impl {
   bool purify_into_warm();
   Index purify_ratio_row(double limit, Index prefer) const;
   bool purify_exchange(Index r, Index entering, double value);
-  bool purify_pair_swap(Index ws, Index s, Index j);
+  bool purify_pair_swap(Index ws, Index j);
+  int purify_degenerate_exchange(Index p, Index var);
   bool purify_path(Index s, Index leaving, Vector& z_super, std::vector<Index>& position, long& budget);
   bool purify_match_pairs(std::vector<Index>& position);
 

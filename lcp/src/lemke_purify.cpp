@@ -82,15 +82,22 @@ bool LemkeSolver::Impl::purify_exchange(Index r, Index entering, double value) {
   factor_current = false;
   basic[r] = entering;
   xB(r) = value;
-  if (updated) return true;
-  ++result.info.refactorizations;
-  if (refactor_hook) refactor_hook(true);
-  const bool ok = basis->refactor(basic);
-  if (refactor_hook) refactor_hook(false);
-  if (!ok) return false;
-  factored_basic = basic;
-  factor_current = true;
-  return true;
+  return updated || factorize_basic();
+}
+
+// Variable `var` into row p by a degenerate exchange: its pivot there must be above the
+// relative tolerance and the move of the basic values, |x_p/a_p|·‖a‖∞, at most
+// kDegenerateMove. 1: done; 0: refused (nothing changed); −1: the basis became singular.
+int LemkeSolver::Impl::purify_degenerate_exchange(Index p, Index var) {
+  basis->solve_column(var, a);
+  const double amax = a.lpNorm<Eigen::Infinity>();
+  if (!a.allFinite() || !(std::abs(a(p)) > std::max(tol, kRelativePivot * amax))) return 0;
+  const double value = xB(p) / a(p);
+  if (std::abs(value) * amax > kDegenerateMove) return 0;
+  for (Index k = 0; k < n; ++k)
+    if (k != p) xB(k) -= a(k) * value;
+  ++result.info.purification_steps;
+  return purify_exchange(p, var, value) ? 1 : -1;
 }
 
 // Complementary pivots after z_s displaced another pair's member v (z_s and w_s both
@@ -143,19 +150,9 @@ bool LemkeSolver::Impl::purify_path(Index s, Index leaving, Vector& z_super, std
 
 // w_j, else z_j, into row ws (held by w_s) when its pivot there is large enough; false if
 // the basis became singular (true also when neither pivot qualifies: nothing changes).
-bool LemkeSolver::Impl::purify_pair_swap(Index ws, Index s, Index j) {
-  for (Index var : {j, n + j}) {
-    basis->solve_column(var, a);
-    const double amax = a.lpNorm<Eigen::Infinity>();
-    if (!a.allFinite() || !(std::abs(a(ws)) > std::max(tol, kRelativePivot * amax))) continue;
-    const double value = xB(ws) / a(ws);
-    if (std::abs(value) * amax > kDegenerateMove) continue;
-    for (Index k = 0; k < n; ++k)
-      if (k != ws) xB(k) -= a(k) * value;
-    ++result.info.purification_steps;
-    (void)s;
-    return purify_exchange(ws, var, value);
-  }
+bool LemkeSolver::Impl::purify_pair_swap(Index ws, Index j) {
+  for (Index var : {j, n + j})
+    if (const int done = purify_degenerate_exchange(ws, var); done != 0) return done > 0;
   return true;
 }
 
@@ -195,17 +192,12 @@ bool LemkeSolver::Impl::purify_match_pairs(std::vector<Index>& position) {
     }
     for (std::size_t k = 0; k < index.size(); ++k) rho(index[k]) = 0.0;
     if (best_var < 0) continue;
-    basis->solve_column(best_var, a);
-    const double amax = a.lpNorm<Eigen::Infinity>();
-    if (!a.allFinite() || !(std::abs(a(p)) > std::max(tol, kRelativePivot * amax))) continue;
-    const double entering = xB(p) / a(p);
-    if (std::abs(entering) * amax > kDegenerateMove) continue;
-    for (Index k = 0; k < n; ++k)
-      if (k != p) xB(k) -= a(k) * entering;
-    ++result.info.purification_steps;
-    position[static_cast<std::size_t>(basic[p])] = -1;
+    const Index leaving = basic[p];
+    const int done = purify_degenerate_exchange(p, best_var);
+    if (done < 0) return false;
+    if (done == 0) continue;
+    position[static_cast<std::size_t>(leaving)] = -1;
     position[static_cast<std::size_t>(best_var)] = p;
-    if (!purify_exchange(p, best_var, entering)) return false;
     none.erase(none.begin() + static_cast<std::ptrdiff_t>(best_slot));
   }
   return true;
@@ -268,7 +260,7 @@ bool LemkeSolver::Impl::purify_into_warm() {
     // basic variable and pair s with both: complementary pivots restore one per pair.
     const Index j = leaving < n ? leaving : leaving - n;
     if (j != s && ws >= 0) {
-      if (!purify_pair_swap(ws, s, j)) {
+      if (!purify_pair_swap(ws, j)) {
         ok = false;
         break;
       }
