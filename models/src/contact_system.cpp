@@ -175,22 +175,4 @@ std::string normal_softness_error(const ContactSystem& s) {
   return {};
 }
 
-SparseMatrix delassus(const ContactSystem& s) {
-  const Index nc = s.num_contacts(), nf = s.num_friction();
-  SparseMatrix J(nc + nf, s.num_dofs());
-  J.reserve(s.Jn.nonZeros() + s.Jt.nonZeros());
-  // Stack [Jn; Jt] row-wise via triplets (both are CSC).
-  std::vector<Triplet> t;
-  t.reserve(static_cast<std::size_t>(s.Jn.nonZeros() + s.Jt.nonZeros()));
-  for (Index j = 0; j < s.Jn.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) t.emplace_back(it.row(), j, it.value());
-  for (Index j = 0; j < s.Jt.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(s.Jt, j); it; ++it) t.emplace_back(nc + it.row(), j, it.value());
-  J.setFromTriplets(t.begin(), t.end());
-  const SparseMatrix JMinv = J * s.minv.asDiagonal();
-  SparseMatrix W = (JMinv * J.transpose()).pruned();
-  W.makeCompressed();
-  return W;
-}
-
 }  // namespace lcprelax

@@ -4,6 +4,8 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/lcp_basis_codes.hpp>
 #include <lcprelax/models/simulator.hpp>
+
+#include "delassus.hpp"
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/world/normal_softness.hpp>
 
@@ -160,9 +162,7 @@ void Simulator::project_positions(const ContactSystem& s, const Vector& v_next, 
   // island is heavily redundant (redundant_island): then straight to the primal QP below.
   LcpResult r;
   if (!redundant_island(s)) {
-    const SparseMatrix JnMinv = s.Jn * s.minv.asDiagonal();
-    SparseMatrix Wnn = JnMinv * s.Jn.transpose();
-    Wnn.makeCompressed();
+    const SparseMatrix Wnn = detail::stacked_delassus(s.Jn, SparseMatrix(0, s.num_dofs()), s.minv, false);
     LemkeSettings plain = settings_.lemke;  // no retries: the interior point below is the fallback
     plain.covering_retries = 0;
     plain.regularization_retries = 0;

@@ -100,7 +100,9 @@ Vector normal_gap_rate(const ContactSystem& s, double dt);
 /// and e in [0, 1]; else a message naming the field.
 std::string normal_softness_error(const ContactSystem& s);
 
-/// W = J M⁻¹ Jᵀ for J = [Jn; Jt] (rows: contacts, then friction rows).
+/// W = J M⁻¹ Jᵀ for J = [Jn; Jt] (rows: contacts, then friction rows); compressed CSC,
+/// sorted rows, exact zeros not stored (models/src/delassus.cpp). Throws InputError when
+/// Jn, Jt or minv do not match the numbers of contacts, friction rows and 3·bodies.
 SparseMatrix delassus(const ContactSystem& s);
 
 }  // namespace lcprelax
