@@ -73,7 +73,7 @@ class Runner {
 
 class LcprelaxRunner : public Runner {
  public:
-  LcprelaxRunner(Scene scene, ContactModel model) : sim_(with_model(std::move(scene), model), settings()) {}
+  LcprelaxRunner(Scene scene, ContactModel model) : sim_(make_simulator(with_model(std::move(scene), model), settings())) {}
   double step() override {
     const double t0 = now_seconds();
     last_ = sim_.step();
