@@ -3,6 +3,7 @@
 // islands, and of the post-stabilization's normal block with Eigen's unpruned Jn M⁻¹ Jnᵀ
 // (explicit zeros kept); the values of a hand-made two-body system; bad sizes.
 #include "contact_island_fixtures.hpp"
+#include "../bench/lcp_assembly_reference.hpp"
 #include "../models/src/delassus.hpp"
 
 #include <lcprelax/core/errors.hpp>
@@ -14,22 +15,6 @@
 
 namespace lcprelax {
 namespace {
-
-// The product as Eigen evaluates it (the formula delassus() reproduces term by term).
-SparseMatrix eigen_delassus(const ContactSystem& s) {
-  const Index nc = s.num_contacts(), nf = s.num_friction();
-  std::vector<Triplet> t;
-  for (Index j = 0; j < s.Jn.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(s.Jn, j); it; ++it) t.emplace_back(it.row(), j, it.value());
-  for (Index j = 0; j < s.Jt.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(s.Jt, j); it; ++it) t.emplace_back(nc + it.row(), j, it.value());
-  SparseMatrix J(nc + nf, s.num_dofs());
-  J.setFromTriplets(t.begin(), t.end());
-  const SparseMatrix JMinv = J * s.minv.asDiagonal();
-  SparseMatrix W = (JMinv * J.transpose()).pruned();
-  W.makeCompressed();
-  return W;
-}
 
 void expect_bitwise_equal(const SparseMatrix& a, const SparseMatrix& b) {
   ASSERT_TRUE(a.isCompressed());
@@ -45,12 +30,12 @@ void expect_bitwise_equal(const SparseMatrix& a, const SparseMatrix& b) {
 }
 
 TEST(Delassus, SameBitsAsEigensProductOnStacksAndPiles) {
-  expect_bitwise_equal(delassus(testing::box_stack(5, 0.5)), eigen_delassus(testing::box_stack(5, 0.5)));
+  expect_bitwise_equal(delassus(testing::box_stack(5, 0.5)), reference::eigen_delassus(testing::box_stack(5, 0.5)));
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const ContactSystem s = testing::settled_pile_island(40, seed, 80);
     ASSERT_GT(s.num_contacts(), 20);
-    expect_bitwise_equal(delassus(s), eigen_delassus(s));
+    expect_bitwise_equal(delassus(s), reference::eigen_delassus(s));
   }
 }
 

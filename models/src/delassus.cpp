@@ -8,7 +8,7 @@
 // The terms and their order are those of Eigen's (J·M⁻¹)·Jᵀ evaluated as the sparse product
 // it runs for these storage orders, so W is the same bit for bit (tested against it), at
 // about a third of the cost: no intermediate row-major copies, transposes or pruning pass
-// (bench/results/delassus.txt). delassus() does not store exact zeros (as Eigen's pruned());
+// (bench/results/lcp_assembly.txt). delassus() does not store exact zeros (as Eigen's pruned());
 // the post-stabilization's normal block keeps them, as its unpruned product did.
 // Cost O(Σ_k Σ_{d ∈ row k} nnz(J(:, d))) flops, O(m + nnz(J) + nnz(W)) memory.
 #include "delassus.hpp"
