@@ -36,7 +36,7 @@ else
   run "$B/run_work_precision" --csv "$R/work_precision.csv"
 fi
 if [ -x "$B/run_pile_peers" ]; then
-  run "$B/run_pile_peers" --pile-sizes 50,200 --settle-steps 150 --steps 20 --pyramid-steps 200 --lcp-max-bodies 50 \
+  run "$B/run_pile_peers" --pile-sizes 50,200 --settle-steps 400 --steps 20 --pyramid-steps 200 --lcp-max-bodies 200 \
     --csv "$R/pile_peers.csv" > "$R/pile_peers.txt"
 else
   echo "Box2D not built: pile peers skipped" >&2
