@@ -1,5 +1,5 @@
 // The lcp model's matrices per island and step, by the library's structured kernels against
-// the reference assemblies they replaced (lcp_assembly_reference.hpp; same matrices bit for
+// straightforward reference assemblies (lcp_assembly_reference.hpp; same matrices bit for
 // bit, tests/models_delassus_test.cpp and models_stewart_trinkle_matrix_test.cpp), on the
 // largest island of a dropped pile (make_pile_scene, seed 1, convex model, default
 // settings): 200 bodies after 300 steps, 1,000 bodies after 120 steps.

@@ -1,7 +1,8 @@
 #pragma once
-// Reference assemblies of the lcp model's matrices, as the library formed them before its
-// structured kernels (models/src/delassus.cpp, models/src/lcp_model.cpp): the tests check
-// that the kernels give the same matrices bit for bit, bench_lcp_assembly times both.
+// Straightforward reference assemblies of the lcp model's matrices (Eigen's sparse product,
+// one triplet per entry) for the structured kernels of models/src/delassus.cpp and
+// models/src/lcp_model.cpp: the tests check that the kernels give the same matrices bit for
+// bit, bench_lcp_assembly times both.
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/contact_system.hpp>
 

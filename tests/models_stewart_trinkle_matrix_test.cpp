@@ -1,5 +1,5 @@
 // stewart_trinkle_lcp()'s matrix, written column by column (models/src/lcp_model.cpp), against
-// the triplet assembly it replaced: the same pattern (explicit zeros included) and the same
+// a triplet assembly (bench/lcp_assembly_reference.hpp): the same pattern (explicit zeros included) and the same
 // values bit for bit, on box stacks and pile islands, with normal compliance (also where W
 // has no diagonal entry) and with the per-contact block; bad sizes throw.
 #include "contact_island_fixtures.hpp"

@@ -14,9 +14,9 @@ namespace lcprelax {
 // sort): column r of W (a normal) gives M's column r; friction column nc + f gives β⁺_f's
 // column and, negated, β⁻_f's. Within a column the rows of W map to [normals | β⁺ rows |
 // β⁻ rows] in that order, then the γ rows follow. The entries, their values and the
-// order of the sums (W, then compliance, then the contact block) are those of the triplet
-// assembly this replaced (tests/models_stewart_trinkle_matrix_test.cpp), in 2.5–4× less
-// time on pile islands of 200 and 1,000 bodies (bench/results/lcp_assembly.txt).
+// order of the sums (W, then compliance, then the contact block) are those of a triplet
+// assembly (bench/lcp_assembly_reference.hpp; equal bits, tests/models_stewart_trinkle_matrix_test.cpp),
+// which takes 2.5–4× longer on pile islands of 200 and 1,000 bodies (bench/results/lcp_assembly.txt).
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt) {
   if (const std::string e = normal_softness_error(s); !e.empty()) throw InputError("stewart_trinkle_lcp: " + e);
   const Index nc = s.num_contacts(), nf = s.num_friction(), n = nc + 3 * nf;

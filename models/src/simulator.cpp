@@ -4,10 +4,10 @@
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/lcp_basis_codes.hpp>
 #include <lcprelax/models/simulator.hpp>
-
-#include "delassus.hpp"
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/world/normal_softness.hpp>
+
+#include "delassus.hpp"
 
 #include <algorithm>
 #include <lcprelax/core/stopwatch.hpp>
