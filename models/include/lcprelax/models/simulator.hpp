@@ -15,7 +15,8 @@
 //      the interior point); velocities are untouched, so penetration is removed without
 //      adding kinetic energy. Up to post_stabilization_passes − 1 further passes re-detect
 //      contacts at the projected positions and project on their true gaps φ where −φ still
-//      exceeds the slop.
+//      exceeds the slop. Overlaps beyond the slop by at most 1e-6·slop (the roundoff of
+//      contacts a projection left at −slop) are not projected, so a pile at rest is not.
 // Warm starts: each contact is keyed by (body a, body b, static shape, ordinal within the
 // pair); the final Lemke basis of its unknowns is reused next step, and with
 // ConvexSolver::active_set_newton the convex solve's final active states (λn > 0, λt at
