@@ -55,7 +55,8 @@ void LemkeSolver::Impl::new_basis() {
   const detail::LemkeColumns cols{&M, &d, n};
   basis = method == LemkeMethod::dense
               ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
-              : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns);
+              : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns,
+                                                shared_lu.get());
   factor_current = false;
 }
 
@@ -174,6 +175,14 @@ void LemkeSolver::update_q(const Vector& q) {
   if (!impl_->is_setup) throw std::logic_error("LemkeSolver::update_q before setup");
   if (q.size() != impl_->n || !q.allFinite()) throw InputError("LCP: update_q needs a finite q of size n");
   impl_->set_q(q);
+}
+
+std::shared_ptr<LemkeSharedFactorization> make_lemke_shared_factorization() {
+  return std::make_shared<LemkeSharedFactorization>();
+}
+
+void LemkeSolver::share_factorization(std::shared_ptr<LemkeSharedFactorization> shared) {
+  impl_->shared_lu = std::move(shared);
 }
 
 void LemkeSolver::warm_start(const std::vector<bool>& z_basic) {

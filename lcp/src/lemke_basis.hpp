@@ -26,6 +26,10 @@
 // (used by backward() only) allocates a temporary.
 #include <lcprelax/sparse/types.hpp>
 
+namespace lcprelax {
+struct LemkeSharedFactorization;
+}
+
 #include <memory>
 #include <vector>
 
@@ -79,7 +83,10 @@ class LemkeBasis {
 
 std::unique_ptr<LemkeBasis> make_dense_lemke_basis(const LemkeColumns& columns, int refactor_interval);
 /// sparse_columns: entering columns by hypersparse solves (LemkeSettings::sparse_columns).
+/// shared: the factorization to factorize in (its symbolic analysis reused while the
+/// pattern repeats; lemke.hpp LemkeSharedFactorization), or nullptr for one of its own.
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
-                                                    bool sparse_columns = true);
+                                                    bool sparse_columns = true,
+                                                    LemkeSharedFactorization* shared = nullptr);
 
 }  // namespace lcprelax::detail

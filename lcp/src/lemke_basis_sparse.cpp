@@ -19,6 +19,7 @@
 
 #include <lcprelax/sparse/hypersparse_column_solve.hpp>
 #include <lcprelax/sparse/hypersparse_solve.hpp>
+#include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
 #include <Eigen/LU>
@@ -36,10 +37,13 @@ using SchurBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 
 class SparseLemkeBasis final : public LemkeBasis {
  public:
-  SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval, bool sparse_columns)
+  SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval, bool sparse_columns,
+                   LemkeSharedFactorization* shared)
       : cols_(columns),
         sparse_columns_(sparse_columns),
         max_updates_(std::min(refactor_interval, kCap)),
+        shared_(shared),
+        klu_(shared ? shared->klu : own_klu_),
         slot_(static_cast<std::size_t>(columns.n), -1),
         W_(columns.n, max_updates_),
         B0_(columns.n, columns.n),
@@ -82,7 +86,13 @@ class SparseLemkeBasis final : public LemkeBasis {
     }
     outer[n] = static_cast<int>(p);
     B0_.data().resize(p);
-    if (!klu_.analyze(B0_).ok() || !klu_.factorize(B0_).ok()) return false;
+    // A shared factorization (LemkeSharedFactorization) may hold the analysis of this pattern.
+    if (!klu_.analyzed_for(B0_)) {
+      if (!klu_.analyze(B0_).ok()) return false;
+      if (shared_) ++shared_->analyses;
+    }
+    if (shared_) ++shared_->factorizations;
+    if (!klu_.factorize(B0_).ok()) return false;
     rows_.reserve(klu_);  // storage for rows_ (built at the first tie) allocated with KLU's
     columns_.reserve(klu_);  // and for columns_ (built at the next solve_column)
     return true;
@@ -265,7 +275,9 @@ class SparseLemkeBasis final : public LemkeBasis {
   static constexpr double kHypersparseDensity = 0.1;  // solve_column's switch
   double column_density_ = 0.0;  // running mean of nnz(B₀⁻¹c)/n over the solved columns
   int max_updates_;
-  sparse::KluLu klu_;
+  LemkeSharedFactorization* shared_;  // or nullptr
+  sparse::KluLu own_klu_;   // unused when the factorization is shared
+  sparse::KluLu& klu_;      // own_klu_ or the shared one
   bool identity_ = false;   // B₀ = I: klu_ is not used
   std::vector<Index> pos_;  // replaced positions P
   std::vector<int> slot_;   // slot of a position in P, or −1
@@ -292,8 +304,8 @@ class SparseLemkeBasis final : public LemkeBasis {
 }  // namespace
 
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
-                                                    bool sparse_columns) {
-  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns);
+                                                    bool sparse_columns, LemkeSharedFactorization* shared) {
+  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns, shared);
 }
 
 }  // namespace lcprelax::detail

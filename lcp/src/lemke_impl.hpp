@@ -35,6 +35,7 @@ struct LemkeSolver::Impl {
   LcpResult result;
   std::vector<Index> basic;  // variable per row: [0,n) w, [n,2n) z, 2n z0
   std::unique_ptr<detail::LemkeBasis> basis;
+  std::shared_ptr<LemkeSharedFactorization> shared_lu;  // share_factorization(); nullptr: none
   void (*refactor_hook)(bool) = nullptr;
   std::vector<Index>* pivot_trace = nullptr;  // set_pivot_trace
 

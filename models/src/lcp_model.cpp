@@ -173,11 +173,12 @@ Vector lcp_perturbation_pattern(const ContactSystem& s, int seed) {
 }
 
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
-                                const std::vector<bool>& warm) {
+                                const std::vector<bool>& warm,
+                                const std::shared_ptr<LemkeSharedFactorization>& warm_factorization) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   LcpModelAttempts a;
-  run_lcp_model_attempts(s, lcp, settings, warm, a);
+  run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization);
   const LcpResult& r = a.used->result();
   ContactSolution out;
   out.status = a.status;

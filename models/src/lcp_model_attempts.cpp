@@ -14,7 +14,8 @@ double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
 }
 
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
-                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold) {
+                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
+                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization) {
   out.solvers.clear();
   out.used = nullptr;
   out.source = LcpModelSource::exact;
@@ -55,9 +56,12 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   warm_only.max_pivots = 1;
   // r and inexact point into out.solvers (a deque never relocates its elements).
   const LemkeSolver* r = nullptr;
+  const std::shared_ptr<LemkeSharedFactorization>* shared = nullptr;  // for the next attempt only
   auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
                         const std::vector<bool>* basis) -> const LemkeSolver& {
     LemkeSolver& solver = out.solvers.emplace_back(ls);
+    if (shared) solver.share_factorization(*shared);
+    shared = nullptr;
     solver.setup(M, q);
     if (basis) solver.warm_start(*basis);
     out.pivots += solver.solve().info.pivots;
@@ -85,7 +89,10 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     else inexact = &rp;
   };
   // 1. The warm basis on q where it is feasible.
-  if (has_warm) r = &attempt(warm_only, lcp.q, &warm);
+  if (has_warm) {
+    if (warm_factorization) shared = &warm_factorization;
+    r = &attempt(warm_only, lcp.q, &warm);
+  }
   // 1b. A crash path on the perturbed q from the warm basis, at most
   //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
   //    step 2's first one: when the polish fails, its solution is kept as the inexact

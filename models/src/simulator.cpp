@@ -293,6 +293,22 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       before.push_back(caches[i]->stats);
     }
   }
+  // LCP model: each island's factorization of its warm basis, matched the same way (the
+  // symbolic analysis is reused while the island's basis pattern repeats: at rest).
+  std::vector<std::shared_ptr<LemkeSharedFactorization>> factorizations(islands.size());
+  if (lcp && settings_.warm_start) {
+    for (int i = 0; i < n_islands; ++i) {
+      std::shared_ptr<LemkeSharedFactorization>& f = lcp_factorizations_[islands[i].bodies.front()];
+      if (!f) f = make_lemke_shared_factorization();
+      factorizations[i] = f;
+    }
+    auto island = islands.begin();
+    for (auto it = lcp_factorizations_.begin(); it != lcp_factorizations_.end();) {
+      while (island != islands.end() && island->bodies.front() < it->first) ++island;
+      const bool used = island != islands.end() && island->bodies.front() == it->first;
+      it = used ? std::next(it) : lcp_factorizations_.erase(it);
+    }
+  }
 #ifdef LCPRELAX_HAS_OPENMP
   const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
@@ -336,7 +352,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
           }
           decode_lcp_basis(code, nc, nf, warm);
         }
-        wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm);
+        wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm, factorizations[i]);
       } else if (settings_.convex_solver == ConvexSolver::active_set_newton) {
         const Index nc = s.num_contacts(), nf = s.num_friction();
         std::vector<signed char> warm;

@@ -127,6 +127,10 @@ FactorResult KluLu::analyze(const SparseMatrix& A) {
   return {};
 }
 
+bool KluLu::analyzed_for(const SparseMatrix& A) const {
+  return impl_ && impl_->analysed && A.isCompressed() && impl_->pattern.matches(A);
+}
+
 FactorResult KluLu::factorize(const SparseMatrix& A) {
   if (!impl_) return detail::moved_from_result();
   Impl& m = *impl_;

@@ -61,11 +61,26 @@
 // derivative for the final basis, i.e. one of the one-sided derivatives, and which one
 // depends on the pivot path.
 #include <lcprelax/lcp/lcp_types.hpp>
+#include <lcprelax/sparse/klu_lu.hpp>
 
 #include <memory>
 #include <vector>
 
 namespace lcprelax {
+
+/// A sparse LU factorization that LemkeSolvers hand on from one solve to the next, one
+/// solver at a time (LemkeSolver::share_factorization): when a basis to factorize has the
+/// pattern of the one factorized before in it, KLU's symbolic analysis (BTF and AMD
+/// orderings, which depend on the pattern only) is reused; the numeric factorization, and
+/// so every result, is the same as without it, bit for bit. For a caller that solves a
+/// sequence of LCPs from the previous basis (a simulated pile at rest: the warm basis and
+/// the pattern of M repeat from step to step).
+struct LemkeSharedFactorization {
+  sparse::KluLu klu;
+  long analyses = 0;        ///< symbolic analyses done in it
+  long factorizations = 0;  ///< numeric factorizations (each after an analysis or reusing one)
+};
+std::shared_ptr<LemkeSharedFactorization> make_lemke_shared_factorization();
 
 class LemkeSolver {
  public:
@@ -100,6 +115,12 @@ class LemkeSolver {
   /// variable (numbering of lemke_basis.hpp: w_i = i, z_j = n + j, z₀ = 2n) to *trace
   /// (allocates); nullptr (the default) for none.
   void set_pivot_trace(std::vector<Index>* trace);
+  /// Factorize this solver's bases (sparse method only; the dense one ignores it) in
+  /// `shared` from the next setup() on; nullptr: a factorization of its own (the default).
+  /// The solver keeps `shared` alive, and it must not be used by another solver until this
+  /// one is destroyed or set up again without it: it holds this solver's factors
+  /// (backward() and result() of a solved LCP use them).
+  void share_factorization(std::shared_ptr<LemkeSharedFactorization> shared);
 
  private:
   struct Impl;

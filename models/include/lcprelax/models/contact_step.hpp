@@ -91,9 +91,11 @@
 //   contact approaches (b ≥ 0) the answer λ = 0 is returned directly.
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
+#include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/models/normal_softening.hpp>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -192,8 +194,13 @@ std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s);
 Vector lcp_perturbation_pattern(const ContactSystem& s, int seed);
 
 /// Solves the lcp model; `warm` (size nc + 3nf, or empty) is tried as the first basis.
+/// `warm_factorization` (optional): the factorization step 1 factorizes the warm basis in
+/// (LemkeSolver::share_factorization), kept by the caller from one step to the next so that
+/// a repeating basis pattern (an island at rest) reuses its symbolic analysis; the answer
+/// is the same bit for bit. Not to be shared between islands solved at the same time.
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
-                                const std::vector<bool>& warm = {});
+                                const std::vector<bool>& warm = {},
+                                const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {});
 
 /// How the convex model's QPs are posed (models/convex_phase_qp.hpp): `dual` in
 /// the impulses λ with the Delassus matrix W = J M⁻¹ Jᵀ; `lifted` in (Δv, λ) with the

@@ -14,6 +14,7 @@
 #include <lcprelax/models/contact_step.hpp>
 
 #include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,10 @@ struct LcpModelAttempts {
 /// caller that knows step 3 failed on this LCP, or one a little different, before: the hard
 /// loss re-solving a transition whose stored basis came from a perturbed answer, where step
 /// 3 was 94% of the pivots (300-body pile, bench/results/learn_scene_hard_stored_bases.txt).
+/// `warm_factorization`: step 1's solver factorizes the warm basis in it (solve_lcp_model).
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
-                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false);
+                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
+                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {});
 
 /// max_i |min(z_i, (M z + q)_i)| on the unperturbed LCP, 0 for an empty one.
 double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z);

@@ -25,12 +25,14 @@
 // Energy (J): kinetic ½ Σ (m|v|² + Iω²) plus potential −Σ m g·x (zero at the origin).
 #include <lcprelax/kkt/qp_settings.hpp>
 #include <lcprelax/lcp/lcp_types.hpp>
+#include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/convex_solver_cache.hpp>
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/world/world.hpp>
 
 #include <map>
+#include <memory>
 #include <array>
 #include <string>
 #include <string_view>
@@ -208,6 +210,9 @@ class Simulator {
   /// Convex model: each island's phase solvers, keyed by the island's smallest body index
   /// (an island keeps it while its bodies stay together); dropped when no island has it.
   std::map<int, ConvexSolverCache> convex_caches_;
+  /// LCP model: each island's factorization of its warm basis (LemkeSharedFactorization),
+  /// matched by the island's smallest body like convex_caches_.
+  std::map<int, std::shared_ptr<LemkeSharedFactorization>> lcp_factorizations_;
 };
 
 }  // namespace lcprelax

@@ -20,6 +20,9 @@ class KluLu final : public Factorization {
   KluLu& operator=(KluLu&&) noexcept;
 
   FactorResult analyze(const SparseMatrix& A) override;
+  /// Whether the last analyze() was of A's pattern (A compressed), so that factorize(A)
+  /// can reuse its symbolic analysis (BTF and AMD orderings depend on the pattern only).
+  bool analyzed_for(const SparseMatrix& A) const;
   FactorResult factorize(const SparseMatrix& A) override;
   /// Numeric refactorization keeping the previous pivot order (requires factorize() first).
   FactorResult refactorize(const SparseMatrix& A);
