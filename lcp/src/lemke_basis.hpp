@@ -26,12 +26,12 @@
 // (used by backward() only) allocates a temporary.
 #include <lcprelax/sparse/types.hpp>
 
-namespace lcprelax {
-struct LemkeSharedFactorization;
-}
-
 #include <memory>
 #include <vector>
+
+namespace lcprelax {
+struct LemkeSharedFactorization;  // lemke.hpp
+}
 
 namespace lcprelax::detail {
 

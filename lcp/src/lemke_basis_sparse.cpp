@@ -8,6 +8,9 @@
 // a factorization (a dense transposed solve if they cannot be extracted), and each
 // entering column's B₀⁻¹c from a hypersparse solve with the same factors
 // (sparse/hypersparse_column_solve.hpp; a dense solve if they cannot be extracted).
+// B₀ is factorized in the basis' own KLU object or in a shared one (lemke.hpp
+// LemkeSharedFactorization); either way KLU's symbolic analysis is skipped when B₀ has the
+// pattern analysed last (the orderings depend on the pattern only: same factors).
 //
 // W is kept dense (for S and the rows of B⁻¹) and by its nonzeros per column (for the
 // correction of each solved column, work Σ nnz(W_j) instead of n·|P|).
@@ -17,9 +20,9 @@
 // the storage of the factors' row-wise copy, reserved right after each factorization.
 #include "lemke_basis.hpp"
 
+#include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/sparse/hypersparse_column_solve.hpp>
 #include <lcprelax/sparse/hypersparse_solve.hpp>
-#include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/sparse/klu_lu.hpp>
 
 #include <Eigen/LU>
