@@ -45,14 +45,7 @@ struct DropOutcome {
 };
 
 DropOutcome drop_pile(int passes) {
-  PileOptions options;
-  options.bodies = 30;
-  options.seed = 1;
-  options.model = ContactModel::convex;
-  SimulatorSettings settings;
-  settings.threads = 1;
-  settings.post_stabilization_passes = passes;
-  Simulator sim = make_simulator(make_pile_scene(options), settings);
+  Simulator sim = test::pile_simulator(30, 1, ContactModel::convex, passes);
   DropOutcome out;
   const double e0 = sim.total_energy();
   double e = e0;
@@ -102,19 +95,14 @@ TEST(PostStabilizationPasses, OverlapsWithinAMillionthOfTheSlopAreLeftAlone) {
 }
 
 TEST(PostStabilizationPasses, APileAtRestIsNotProjected) {
-  PileOptions options;
-  options.bodies = 60;
-  options.seed = 1;
-  options.model = ContactModel::lcp;
-  SimulatorSettings settings;
-  settings.threads = 1;
-  Simulator sim = make_simulator(make_pile_scene(options), settings);
+  Simulator sim = test::pile_simulator(60, 1, ContactModel::lcp);
+  const double slop = sim.settings().penetration_slop;
   for (int k = 0; k < 300; ++k) ASSERT_EQ(sim.step().failed_islands, 0) << "settle step " << k;
   for (int k = 0; k < 20; ++k) {
     const StepStats st = sim.step();
     EXPECT_EQ(st.projected_islands, 0) << "step " << k;
     EXPECT_GT(st.contacts, 60);
-    EXPECT_LE(st.max_penetration, settings.penetration_slop * (1.0 + 1e-6)) << "step " << k;
+    EXPECT_LE(st.max_penetration, slop * (1.0 + 1e-6)) << "step " << k;
   }
 }
 

@@ -4,6 +4,7 @@
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/models/simulator.hpp>
+#include <lcprelax/scenes/pile_scene.hpp>
 #include <lcprelax/scenes/scene.hpp>
 
 #include <algorithm>
@@ -51,6 +52,19 @@ inline Scene incline_scene(double angle, double mu, double dt, ContactModel mode
   const Vec2 n(-std::sin(angle), std::cos(angle));
   const Vec2 c = h * n;
   return scene_with({box(0.2, 0.2, 1.0, Vec3(c.x(), c.y(), angle))}, mu, dt, model, angle);
+}
+
+/// A simulator of make_pile_scene(bodies, seed) with `model`, one thread and
+/// `passes` post-stabilization passes (the rest of SimulatorSettings at its defaults).
+inline Simulator pile_simulator(int bodies, std::uint64_t seed, ContactModel model, int passes = 5) {
+  PileOptions options;
+  options.bodies = bodies;
+  options.seed = seed;
+  options.model = model;
+  SimulatorSettings settings;
+  settings.threads = 1;
+  settings.post_stabilization_passes = passes;
+  return make_simulator(make_pile_scene(options), settings);
 }
 
 /// `count` unit boxes (1 m, 1 kg) stacked on the ground at x = 0, every gap 0.

@@ -5,13 +5,15 @@
 // by 1 + 1e-9·k (k = 1..4, the same pattern, slightly different values: the next steps of a
 // pile at rest) solved from that basis with one shared factorization: one analysis for the
 // warm basis' pattern and none after it, each z equal bit for bit to a fresh solver's. And
-// the simulator: a pile at rest stepped with shared factorizations (its default) takes the
-// same poses bit for bit as stepping islands through solve_lcp_model without them.
+// solve_lcp_model, which the simulator calls with each island's shared factorization: on
+// every island of that pile solved by the sparse method, the same impulses and velocities
+// bit for bit with and without one, with one analysis for three solves.
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/simulator.hpp>
-#include <lcprelax/scenes/pile_scene.hpp>
+
+#include "dynamics_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,13 +28,7 @@ bool same_bits(const Vector& a, const Vector& b) {
 }
 
 Simulator pile_at_rest() {
-  PileOptions p;
-  p.bodies = 60;
-  p.seed = 1;
-  p.model = ContactModel::lcp;
-  SimulatorSettings settings;
-  settings.threads = 1;
-  Simulator sim = make_simulator(make_pile_scene(p), settings);
+  Simulator sim = test::pile_simulator(60, 1, ContactModel::lcp);
   for (int k = 0; k < 300; ++k) sim.step();
   return sim;
 }

@@ -56,19 +56,20 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   warm_only.max_pivots = 1;
   // r and inexact point into out.solvers (a deque never relocates its elements).
   const LemkeSolver* r = nullptr;
-  const std::shared_ptr<LemkeSharedFactorization>* shared = nullptr;  // for the next attempt only
+  // `lu`: the factorization to factorize in (step 1's warm_factorization), or none.
   auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
-                        const std::vector<bool>* basis) -> const LemkeSolver& {
+                        const std::vector<bool>* basis,
+                        const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr) -> const LemkeSolver& {
     LemkeSolver& solver = out.solvers.emplace_back(ls);
-    if (shared) solver.share_factorization(*shared);
-    shared = nullptr;
+    if (lu) solver.share_factorization(lu);
     solver.setup(M, q);
     if (basis) solver.warm_start(*basis);
     out.pivots += solver.solve().info.pivots;
     return solver;
   };
-  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis) -> const LemkeSolver& {
-    return attempt_on(lcp.M, ls, q, basis);
+  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis,
+                     const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr) -> const LemkeSolver& {
+    return attempt_on(lcp.M, ls, q, basis, lu);
   };
   auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
   auto perturbed = [&](double delta, int seed) { return Vector(lcp.q + delta * pattern(seed)); };
@@ -89,10 +90,7 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     else inexact = &rp;
   };
   // 1. The warm basis on q where it is feasible.
-  if (has_warm) {
-    if (warm_factorization) shared = &warm_factorization;
-    r = &attempt(warm_only, lcp.q, &warm);
-  }
+  if (has_warm) r = &attempt(warm_only, lcp.q, &warm, warm_factorization);
   // 1b. A crash path on the perturbed q from the warm basis, at most
   //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
   //    step 2's first one: when the polish fails, its solution is kept as the inexact

@@ -55,6 +55,18 @@ bool redundant_island(const ContactSystem& s) {
 // a projection is meant to remove; with slop 0 every overlap is projected, as asked.
 double projection_tolerance(double slop) { return 1e-6 * slop; }
 
+// Drops the entries of a per-island map (keyed by the island's smallest body) whose island
+// is gone; `islands` come in increasing order of their smallest body (find_islands).
+template <class Map>
+void drop_gone_islands(Map& per_island, const std::vector<Island>& islands) {
+  auto island = islands.begin();
+  for (auto it = per_island.begin(); it != per_island.end();) {
+    while (island != islands.end() && island->bodies.front() < it->first) ++island;
+    const bool used = island != islands.end() && island->bodies.front() == it->first;
+    it = used ? std::next(it) : per_island.erase(it);
+  }
+}
+
 struct IslandWork {
   ContactSystem system;
   ContactSolution solution;
@@ -302,12 +314,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       if (!f) f = make_lemke_shared_factorization();
       factorizations[i] = f;
     }
-    auto island = islands.begin();
-    for (auto it = lcp_factorizations_.begin(); it != lcp_factorizations_.end();) {
-      while (island != islands.end() && island->bodies.front() < it->first) ++island;
-      const bool used = island != islands.end() && island->bodies.front() == it->first;
-      it = used ? std::next(it) : lcp_factorizations_.erase(it);
-    }
+    drop_gone_islands(lcp_factorizations_, islands);
   }
 #ifdef LCPRELAX_HAS_OPENMP
   const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
@@ -452,13 +459,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       stats.qp_solve_seconds += c.solve_seconds - before[i].solve_seconds;
       stats.qp_factor_seconds += c.factor_seconds - before[i].factor_seconds;
     }
-    // Islands come in increasing order of their smallest body (find_islands).
-    auto island = islands.begin();
-    for (auto it = convex_caches_.begin(); it != convex_caches_.end();) {
-      while (island != islands.end() && island->bodies.front() < it->first) ++island;
-      const bool used = island != islands.end() && island->bodies.front() == it->first;
-      it = used ? std::next(it) : convex_caches_.erase(it);
-    }
+    drop_gone_islands(convex_caches_, islands);
   }
   for (std::size_t b = 0; b < world.bodies.size(); ++b) {
     RigidBody& body = world.bodies[b];
