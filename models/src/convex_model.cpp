@@ -50,12 +50,12 @@ const QpResult& timed_solve(QpSolver& qp, ConvexSolverCache& cache) {
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening) {
-  return solve_convex_model(s, dt, settings, rho, formulation, softening, nullptr);
+  return solve_convex_model(s, dt, settings, rho, formulation, softening, nullptr, false);
 }
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
-                                   ConvexSolverCache* cache) {
+                                   ConvexSolverCache* cache, bool release_open_contacts) {
   if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
   if (s.lcp_block.enabled)
     throw InputError("the convex model has no LCP: World::lcp_block (the per-contact LCP correction) applies to the lcp "
@@ -109,6 +109,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // Phase 2: friction, bounded by κ, with the normal softening term on λn.
   t0 = std::chrono::steady_clock::now();
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
+  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2);
   c.stats.assemble_seconds += seconds_since(t0);
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;

@@ -15,8 +15,9 @@ namespace {
 
 ContactSolution fallback(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                          ConvexFormulation formulation, const NormalSofteningSettings& softening,
-                         ConvexSolverCache* cache, long newton_work, const std::string& why) {
-  ContactSolution out = solve_convex_model(s, dt, settings, rho, formulation, softening, cache);
+                         ConvexSolverCache* cache, bool release_open_contacts, long newton_work,
+                         const std::string& why) {
+  ContactSolution out = solve_convex_model(s, dt, settings, rho, formulation, softening, cache, release_open_contacts);
   out.work += newton_work;
   out.newton_fallback = true;
   if (out.message.empty())
@@ -31,7 +32,7 @@ ContactSolution fallback(const ContactSystem& s, double dt, const QpSettings& se
 ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                           ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                           ConvexSolverCache* cache, const std::vector<signed char>& warm,
-                                          int max_iterations) {
+                                          int max_iterations, bool release_open_contacts) {
   if (std::string e = softening.validation_error(); !e.empty()) throw InputError("NormalSofteningSettings." + e);
   if (s.lcp_block.enabled)
     throw InputError("the convex model has no LCP: World::lcp_block (the per-contact LCP correction) applies to the lcp "
@@ -46,7 +47,8 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   if (has_normal_softness(s)) add_pair_softness(soft, s.phi, s.compliance, s.erp, dt);  // FrictionTable's c, e
   const NormalSofteningTerms soft1 = phase1_softening_terms(soft);
   if (nc == 0 || (bn.minCoeff() >= 0.0 && (bn - soft1.v_ref).minCoeff() >= 0.0))
-    return solve_convex_model(s, dt, settings, rho, formulation, softening, cache);  // λ = 0, no solve
+    return solve_convex_model(s, dt, settings, rho, formulation, softening, cache,
+                              release_open_contacts);  // λ = 0, no solve
 
   detail::ActiveSetSettings as;
   as.eps_abs = settings.eps_abs;
@@ -66,7 +68,7 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   const detail::ActiveSetResult r1 = detail::solve_active_set_qp(
       p1.problem, std::vector<detail::ActiveState>(p1.problem.num_inequalities(), 0), b1, as, &zero1);
   long work = r1.iterations;
-  if (!r1.converged) return fallback(s, dt, settings, rho, formulation, softening, cache, work, "phase 1: " + r1.message);
+  if (!r1.converged) return fallback(s, dt, settings, rho, formulation, softening, cache, release_open_contacts, work, "phase 1: " + r1.message);
   const Vector lambda1 = r1.x.segment(o1, nc).cwiseMax(0.0);
   const double kappa = lambda1.sum();
 
@@ -75,6 +77,7 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
   // The interior point's first loosening, so that both methods solve the same QP.
   p2.problem.u(nc) = kappa * (1.0 + detail::kKappaSlacks[0]) + 1e-12;
+  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2);
   const Index o2 = p2.lambda_offset;
   std::vector<detail::ActiveState> rows2(static_cast<std::size_t>(p2.problem.num_inequalities()), 0);
   std::vector<detail::ActiveState> b2(static_cast<std::size_t>(p2.problem.num_variables()), 0);
@@ -97,7 +100,7 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   if (data.lifted()) start2.head(s.num_dofs()) = s.minv.cwiseProduct(s.Jn.transpose() * lambda1);
   const detail::ActiveSetResult r2 = detail::solve_active_set_qp(p2.problem, rows2, b2, as, &start2);
   work += r2.iterations;
-  if (!r2.converged) return fallback(s, dt, settings, rho, formulation, softening, cache, work, "phase 2: " + r2.message);
+  if (!r2.converged) return fallback(s, dt, settings, rho, formulation, softening, cache, release_open_contacts, work, "phase 2: " + r2.message);
 
   ContactSolution out;
   out.status = ContactStatus::solved;

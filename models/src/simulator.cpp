@@ -377,10 +377,11 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
           }
         }
         wk.solution = solve_convex_model_newton(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
-                                                settings_.convex_softening, caches[i], warm);
+                                                settings_.convex_softening, caches[i], warm, -1,
+                                                settings_.convex_release_open_contacts);
       } else {
         wk.solution = solve_convex_model(s, dt, settings_.qp, settings_.convex_rho, settings_.convex_formulation,
-                                         settings_.convex_softening, caches[i]);
+                                         settings_.convex_softening, caches[i], settings_.convex_release_open_contacts);
       }
       // A fallback's answer is used, but the island still counts as failed.
       if (!has_solution(wk.solution.status) && lcp && !redundant_island(s)) {  // fallback: the convex model

@@ -228,9 +228,12 @@ struct ConvexSolverCache;  // convex_solver_cache.hpp
 /// As above, with the phase solvers kept in `cache` (may be null: fresh solvers): a phase
 /// whose QP has the pattern of the cache's last one is updated in place (its symbolic
 /// analysis reused), else set up afresh. The answer is that of the fresh solve to roundoff.
+/// `release_open_contacts`: phase 2 puts no normal impulse on an open contact (φ > 0) that
+/// phase 1's frictionless answer leaves open (detail::release_open_contacts,
+/// convex_phase_qp.hpp; SimulatorSettings::convex_release_open_contacts).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
-                                   ConvexSolverCache* cache);
+                                   ConvexSolverCache* cache, bool release_open_contacts = false);
 
 /// How the convex model's phase QPs are solved: by the interior point (QpSolver), or by the
 /// warm-started primal–dual active-set (semismooth Newton) method of active_set_qp.hpp,
@@ -250,7 +253,7 @@ enum class ConvexSolver { interior_point, active_set_newton };
 ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                           ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                           ConvexSolverCache* cache, const std::vector<signed char>& warm = {},
-                                          int max_iterations = -1);
+                                          int max_iterations = -1, bool release_open_contacts = false);
 
 /// Default cap of active-set iterations (KKT factorizations) per phase of
 /// solve_convex_model_newton; beyond it the island falls back to the interior point.

@@ -74,6 +74,16 @@ struct ConvexPhaseTerms {
 ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& softening,
                                const ConvexPhaseTerms& terms = {});
 
+/// Phase 2 puts no normal impulse on an open contact that phase 1 leaves open
+/// (SimulatorSettings::convex_release_open_contacts): contact i with φ_i > 0 whose normal
+/// velocity under phase 1's frictionless impulses λ1 still does not close its gap within the
+/// step, bn_i + (Wnn λ1)_i > Wnn_ii λ1_i (the velocity slack exceeds λ1_i's own velocity
+/// contribution; phase 1's complementarity makes one of the two ≈ 0), gets the bound
+/// λn_i ≤ 0 (xu = 0; λt_i then vanishes by its cone rows). Without it phase 2 may spend
+/// phase 1's budget κ on such contacts and hold bodies at a gap up to the contact margin
+/// (measured in docs/formulations.md). Returns how many contacts were released.
+Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, ConvexPhaseQp& p2);
+
 /// Relative loosenings of phase 2's bound eᵀλn ≤ κ(1 + slack) + 1e-12 N·s, tried in order
 /// (convex_model.cpp explains why; the Newton path uses the first).
 inline constexpr double kKappaSlacks[] = {1e-6, 1e-4, 1e-2};

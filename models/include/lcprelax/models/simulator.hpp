@@ -105,6 +105,14 @@ struct SimulatorSettings {
   /// still moving at 0.3–0.6 m/s) every active-set solve hit its cap and fell back, costing
   /// 1.1–1.9× the interior point's CPU time; it converges on stacks (0 fallbacks).
   ConvexSolver convex_solver = ConvexSolver::interior_point;
+  /// Convex model: phase 2 puts no normal impulse on an open contact (gap φ > 0) that phase
+  /// 1's frictionless answer leaves open (convex_phase_qp.hpp release_open_contacts). Without
+  /// it, phase 2 may spend phase 1's normal-impulse budget κ on contacts within the margin and
+  /// hold bodies above their supports: a 200-body pile settled 300 steps (seed 1, margin 1 cm)
+  /// had 14 bodies more than 1 mm from any contact, up to 12.5 mm, and none with it
+  /// (docs/formulations.md). Off by default for now: the convex learning loss
+  /// (learn/step_loss_convex.hpp) poses phase 2 without it.
+  bool convex_release_open_contacts = false;
   SimulatorSettings();
 
   /// Empty when valid, else a message naming the first bad field ("dt: must be ...").
