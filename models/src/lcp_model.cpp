@@ -174,11 +174,12 @@ Vector lcp_perturbation_pattern(const ContactSystem& s, int seed) {
 
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm,
-                                const std::shared_ptr<LemkeSharedFactorization>& warm_factorization) {
+                                const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
+                                bool accept_perturbed) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   LcpModelAttempts a;
-  run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization);
+  run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization, accept_perturbed);
   const LcpResult& r = a.used->result();
   ContactSolution out;
   out.status = a.status;
@@ -186,6 +187,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   out.work = a.pivots;
   out.z_basic = r.z_basic;
   out.warm_started = a.warm_started;
+  out.perturbed = has_solution(a.status) && a.source == LcpModelSource::perturbed;
   if (!has_solution(out.status)) {
     out.residual = r.info.complementarity;
     return out;

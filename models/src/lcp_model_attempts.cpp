@@ -15,7 +15,8 @@ double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
 
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
-                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization) {
+                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
+                            bool accept_perturbed) {
   out.solvers.clear();
   out.used = nullptr;
   out.source = LcpModelSource::exact;
@@ -103,7 +104,10 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     warm_crash.crash_cold_fallback = false;  // step 2 is the cold start
     warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
     const LemkeSolver& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
-    if (solved(&rc)) polish_on_q(rc, 0);
+    if (solved(&rc) && accept_perturbed)
+      inexact = &rc;  // kept as it is: steps 2 and 3 are skipped below
+    else if (solved(&rc))
+      polish_on_q(rc, 0);
   }
   // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
   LemkeSettings cold = plain;
@@ -115,7 +119,7 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
   //    request when there is a perturbed solution (skip_exact_cold).
-  if (!solved(r) && !(skip_exact_cold && inexact)) r = &attempt(exact, lcp.q, nullptr);
+  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && inexact)) r = &attempt(exact, lcp.q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;
     out.source = LcpModelSource::perturbed;

@@ -307,14 +307,12 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   }
   // LCP model: each island's factorization of its warm basis, matched the same way (the
   // symbolic analysis is reused while the island's basis pattern repeats: at rest).
-  std::vector<std::shared_ptr<LemkeSharedFactorization>> factorizations(islands.size());
+  // An island whose last answers were perturbed takes step 1b's perturbed answer as it is,
+  // except where lcp_retry_exact says to run every attempt (contact_step.hpp).
+  std::vector<LcpIslandMemory*> lcp_memory(islands.size(), nullptr);
   if (lcp && settings_.warm_start) {
-    for (int i = 0; i < n_islands; ++i) {
-      std::shared_ptr<LemkeSharedFactorization>& f = lcp_factorizations_[islands[i].bodies.front()];
-      if (!f) f = make_lemke_shared_factorization();
-      factorizations[i] = f;
-    }
-    drop_gone_islands(lcp_factorizations_, islands);
+    for (int i = 0; i < n_islands; ++i) lcp_memory[i] = &lcp_islands_[islands[i].bodies.front()];
+    drop_gone_islands(lcp_islands_, islands);
   }
 #ifdef LCPRELAX_HAS_OPENMP
   const int threads = settings_.threads > 0 ? settings_.threads : omp_get_max_threads();
@@ -359,7 +357,10 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
           }
           decode_lcp_basis(code, nc, nf, warm);
         }
-        wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm, factorizations[i]);
+        const LcpIslandMemory* memory = lcp_memory[i];
+        const bool accept_perturbed = memory && !lcp_retry_exact(memory->perturbed_steps);
+        wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm, memory ? memory->factorization : nullptr,
+                                      accept_perturbed);
       } else if (settings_.convex_solver == ConvexSolver::active_set_newton) {
         const Index nc = s.num_contacts(), nf = s.num_friction();
         std::vector<signed char> warm;
@@ -442,6 +443,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     }
     const Index nc = s.num_contacts(), nf = s.num_friction();
     if (sol.newton_fallback) ++stats.newton_fallbacks;
+    if (lcp_memory[i]) lcp_memory[i]->perturbed_steps = sol.perturbed ? lcp_memory[i]->perturbed_steps + 1 : 0;
     // The LCP's final basis, or the convex active-set method's final active states.
     if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       encode_lcp_basis(sol.z_basic, nc, nf, code);

@@ -122,6 +122,23 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 1.0;
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
 constexpr long kLcpExactPivotsPerUnknown = 3;
 
+/// A jammed island at rest can have no exact solution that Lemke reaches: every step ends
+/// on the perturbed answer, after the polish (step 1b) and the exact cold start (step 3)
+/// failed again (200-body pile at 1.9e-6 m/s: 180 ms per step, of which 110 ms in step 3,
+/// against 3 ms for a step solved by its warm basis). After such a step the simulator
+/// takes step 1b's perturbed answer as it is (solve_lcp_model's accept_perturbed), except
+/// after 1, 2, 4, 8, 16 and then every kLcpExactRetrySteps consecutive perturbed steps
+/// (an exponential backoff), where every attempt runs again, so that an island that has
+/// an exact solution again returns to it.
+constexpr int kLcpExactRetrySteps = 32;
+
+/// Whether an island whose last `perturbed_steps` answers were perturbed runs every attempt
+/// (true) or takes step 1b's perturbed answer (false); true for 0.
+constexpr bool lcp_retry_exact(int perturbed_steps) {
+  return perturbed_steps < kLcpExactRetrySteps ? (perturbed_steps & (perturbed_steps - 1)) == 0
+                                               : perturbed_steps % kLcpExactRetrySteps == 0;
+}
+
 /// Relative regularization ε/max(1, ‖M‖∞) of step 4 above. On the 500-body pile of seed 2
 /// (5,916 unknowns, exported with `lcprelax pile --export-fc2d`; bench/README.md) 1e-12
 /// and 1e-10 ended on rays (after 5,832 and 46,622 pivots); 1e-8 solved in 32,787 pivots
@@ -168,6 +185,7 @@ struct ContactSolution {
   long work = 0;            ///< Lemke pivots, or interior-point iterations of both phases
   std::vector<bool> z_basic;  ///< LCP final basis (warm start of the next step)
   bool warm_started = false;  ///< LCP: the warm basis solved it in zero pivots
+  bool perturbed = false;     ///< LCP: the answer solves q + δu (status solved_inaccurate)
   /// Convex model with ConvexSolver::active_set_newton: a phase did not converge by the
   /// active-set method and the interior point's answer (all of it) was used.
   bool newton_fallback = false;
@@ -198,9 +216,12 @@ Vector lcp_perturbation_pattern(const ContactSystem& s, int seed);
 /// (LemkeSolver::share_factorization), kept by the caller from one step to the next so that
 /// a repeating basis pattern (an island at rest) reuses its symbolic analysis; the answer
 /// is the same bit for bit. Not to be shared between islands solved at the same time.
+/// `accept_perturbed`: step 1b's answer on q + δu is taken without the polish and the later
+/// attempts (run_lcp_model_attempts; kLcpExactRetrySteps says when the simulator asks).
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm = {},
-                                const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {});
+                                const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
+                                bool accept_perturbed = false);
 
 /// How the convex model's QPs are posed (models/convex_phase_qp.hpp): `dual` in
 /// the impulses λ with the Delassus matrix W = J M⁻¹ Jᵀ; `lifted` in (Δv, λ) with the

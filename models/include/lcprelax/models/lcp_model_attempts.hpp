@@ -46,9 +46,14 @@ struct LcpModelAttempts {
 /// loss re-solving a transition whose stored basis came from a perturbed answer, where step
 /// 3 was 94% of the pivots (300-body pile, bench/results/learn_scene_hard_stored_bases.txt).
 /// `warm_factorization`: step 1's solver factorizes the warm basis in it (solve_lcp_model).
+/// `accept_perturbed`: when step 1b solves q + δu, that answer is taken without its polish
+/// on q and without steps 2–5 (source perturbed, solved_inaccurate): for a caller whose
+/// previous LCP of this island ended perturbed after those had failed (a jammed pile at
+/// rest; contact_step.hpp kLcpExactRetrySteps).
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
-                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {});
+                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
+                            bool accept_perturbed = false);
 
 /// max_i |min(z_i, (M z + q)_i)| on the unperturbed LCP, 0 for an empty one.
 double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z);

@@ -218,9 +218,14 @@ class Simulator {
   /// Convex model: each island's phase solvers, keyed by the island's smallest body index
   /// (an island keeps it while its bodies stay together); dropped when no island has it.
   std::map<int, ConvexSolverCache> convex_caches_;
-  /// LCP model: each island's factorization of its warm basis (LemkeSharedFactorization),
-  /// matched by the island's smallest body like convex_caches_.
-  std::map<int, std::shared_ptr<LemkeSharedFactorization>> lcp_factorizations_;
+  /// LCP model, per island (matched by its smallest body like convex_caches_): the
+  /// factorization of its warm basis (LemkeSharedFactorization), and how many consecutive
+  /// steps ended on a perturbed answer (contact_step.hpp kLcpExactRetrySteps).
+  struct LcpIslandMemory {
+    std::shared_ptr<LemkeSharedFactorization> factorization = make_lemke_shared_factorization();
+    int perturbed_steps = 0;
+  };
+  std::map<int, LcpIslandMemory> lcp_islands_;
 };
 
 }  // namespace lcprelax

@@ -1,0 +1,109 @@
+// Jammed islands whose LCP ends on the perturbed answer step after step (contact_step.hpp
+// kLcpExactRetrySteps): run_lcp_model_attempts' accept_perturbed takes step 1b's answer on
+// q + δu without its polish and without steps 2–5, and the simulator asks for it after a
+// perturbed step except on the steps of lcp_retry_exact's backoff (1, 2, 4, 8, 16, then
+// every 32 consecutive perturbed steps).
+// Measured on the jammed island settled_pile_island(60, 1, 80) (its cold chain ends on the
+// perturbed answer), from that answer's basis as the warm basis:
+// - with accept_perturbed: 2 attempts (step 1 on q, infeasible; step 1b on q + δu) and 1
+//   pivot, status solved_inaccurate, residual on (M, q) within δ = 1e-7‖q‖∞;
+// - without: 5 attempts and 1,701 pivots, ending on a perturbed answer too.
+// The simulator on a pile that jams at rest (200 bodies, seed 1, settled 400 steps by the
+// convex model releasing open contacts, then 40 steps of the lcp model): 18 steps take the
+// perturbed answer without the full chain, each pivoting at most 5% of its unknowns (the
+// full chain: about 1,600 pivots of 2,856 in step 3 alone), no island fails, and the pile
+// stays at rest (1.9e-6 m/s).
+#include <lcprelax/models/lcp_model_attempts.hpp>
+#include <lcprelax/models/simulator.hpp>
+#include <lcprelax/scenes/pile_scene.hpp>
+#include <lcprelax/scenes/scene.hpp>
+
+#include "contact_island_fixtures.hpp"
+#include "dynamics_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace lcprelax {
+namespace {
+
+constexpr double kDt = 1e-2;
+
+const ContactSystem& jammed_island() {
+  static const ContactSystem s = testing::settled_pile_island(60, 1, 80);
+  return s;
+}
+
+TEST(LcpAcceptPerturbed, TakesTheWarmCrashAnswerWithoutFurtherAttempts) {
+  const ContactSystem& s = jammed_island();
+  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
+  LcpModelAttempts cold;
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
+  ASSERT_EQ(cold.source, LcpModelSource::perturbed) << "the island is not jammed any more: " << cold.message;
+  const std::vector<bool> warm = cold.used->result().z_basic;
+
+  LcpModelAttempts accepted, full;
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, warm, accepted, false, {}, /*accept_perturbed=*/true);
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, warm, full);
+  EXPECT_EQ(accepted.solvers.size(), 2u);
+  EXPECT_EQ(accepted.source, LcpModelSource::perturbed);
+  EXPECT_EQ(accepted.status, ContactStatus::solved_inaccurate);
+  const double q_norm = lcp.q.lpNorm<Eigen::Infinity>();
+  EXPECT_LE(stewart_trinkle_residual(lcp, accepted.used->result().z), kLcpPerturbation * q_norm);
+  EXPECT_GT(full.solvers.size(), 2u);
+  EXPECT_EQ(full.source, LcpModelSource::perturbed);
+  EXPECT_LT(accepted.pivots, full.pivots);
+  std::printf("accepted: %zu attempts, %ld pivots; full: %zu attempts, %ld pivots\n", accepted.solvers.size(),
+              accepted.pivots, full.solvers.size(), full.pivots);
+}
+
+TEST(LcpAcceptPerturbed, RetryScheduleBacksOffExponentially) {
+  for (int k : {0, 1, 2, 4, 8, 16, kLcpExactRetrySteps, 2 * kLcpExactRetrySteps, 3 * kLcpExactRetrySteps})
+    EXPECT_TRUE(lcp_retry_exact(k)) << k;
+  for (int k : {3, 5, 7, 9, 15, 17, 31, kLcpExactRetrySteps + 1, kLcpExactRetrySteps + 16, 2 * kLcpExactRetrySteps - 1})
+    EXPECT_FALSE(lcp_retry_exact(k)) << k;
+}
+
+TEST(LcpAcceptPerturbed, SimulatorTakesCheapPerturbedStepsOnAJammedPile) {
+  // A 200-body pile settled by the convex model (releasing open contacts, so that no body
+  // is held above its supports), then stepped by the lcp model: it comes to rest in a
+  // jammed configuration whose steps end on the perturbed answer.
+  PileOptions o;
+  o.bodies = 200;
+  o.seed = 1;
+  o.model = ContactModel::convex;
+  SimulatorSettings settings;
+  settings.threads = 1;
+  settings.convex_release_open_contacts = true;
+  Simulator convex = make_simulator(make_pile_scene(o), settings);
+  for (int k = 0; k < 400; ++k) convex.step();
+  settings.model = ContactModel::lcp;
+  Simulator sim(convex.world(), settings);
+  int streak = 0, accepted_steps = 0;
+  for (int k = 0; k < 40; ++k) {
+    const bool accepts = !lcp_retry_exact(streak);
+    const StepStats st = sim.step();
+    EXPECT_EQ(st.failed_islands, 0) << "step " << k << ": " << st.first_failure;
+    if (accepts && st.inaccurate_islands > 0) {
+      ++accepted_steps;
+      EXPECT_LE(st.work, 0.05 * st.largest_island_unknowns) << "step " << k;
+    }
+    streak = st.inaccurate_islands > 0 ? streak + 1 : 0;
+  }
+  EXPECT_GE(accepted_steps, 5);
+  double speed = 0.0;  // largest body-point speed bound |v| + |ω|·r (m/s)
+  for (const RigidBody& b : sim.world().bodies) {
+    if (b.is_static) continue;
+    double r = 0.0;
+    for (const Vec2& v : b.shape.vertices) r = std::max(r, v.norm());
+    speed = std::max(speed, b.velocity.head<2>().norm() + std::abs(b.velocity(2)) * r);
+  }
+  std::printf("[ measured ] accepted perturbed steps %d of 40, final speed %.3g m/s\n", accepted_steps, speed);
+  EXPECT_LT(speed, 1e-4);
+}
+
+}  // namespace
+}  // namespace lcprelax
