@@ -46,6 +46,7 @@ TEST_F(CliPilePhysics, InvalidValuesAreBadInputNamingTheFlag) {
       {"--qp-eps nan", "--qp-eps: must be a positive finite number"},
       {"--lemke-tol -1e-9", "--lemke-tol: must be a finite number >= 0"},
       {"--post-stabilization-passes 0", "--post-stabilization-passes: must be >= 1, got 0"},
+      {"--model lcp --release-open-contacts", "--release-open-contacts: applies to the convex model only"},
   };
   for (const auto& [flag, message] : cases) {
     CliRun r = run_cli("pile --bodies 3 --steps 2 " + flag);
@@ -96,6 +97,16 @@ TEST_F(CliPilePhysics, QpToleranceReachesTheConvexModel) {
   };
   EXPECT_NE(residual(" --qp-eps 1e-3"), residual(""));
   EXPECT_EQ(residual(" --qp-eps 1e-8"), residual(""));  // the default, given explicitly
+}
+
+TEST_F(CliPilePhysics, ReleaseOpenContactsReachesTheConvexModel) {
+  const auto run = [](const std::string& extra) {
+    const CliRun r = run_cli("pile --bodies 20 --steps 60 --model convex --json" + extra);
+    EXPECT_EQ(r.exit_code, 0) << extra << ": " << r.err;
+    const Json j = Json::parse(r.out);
+    return std::make_pair(j["max_residual"].get<double>(), j["max_energy_gain"].get<double>());
+  };
+  EXPECT_NE(run(" --release-open-contacts"), run(""));
 }
 
 TEST_F(CliPilePhysics, ProjectionPassesReachTheSimulator) {

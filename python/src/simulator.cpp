@@ -95,6 +95,7 @@ const std::vector<SettingField<SimulatorSettings>>& simulator_fields() {
       bool_field("warm_start", &S::warm_start),
       int_field("threads", &S::threads),
       bool_field("reuse_convex_solvers", &S::reuse_convex_solvers),
+      bool_field("convex_release_open_contacts", &S::convex_release_open_contacts),
       nested_field("qp", &S::qp, &qp_fields),
       nested_field("lemke", &S::lemke, &lemke_fields)};
   return fields;
@@ -277,7 +278,8 @@ void bind_simulator(py::module_& m) {
            "model ('lcp' | 'convex'), margin (m), penetration_slop (m), convex_rho, softening,\n"
            "convex_formulation, convex_solver, post_stabilization, post_stabilization_passes,\n"
            "warm_start, threads (0: all),\n"
-           "reuse_convex_solvers, qp (dict of QpSettings), lemke (dict of LemkeSettings).")
+           "reuse_convex_solvers, convex_release_open_contacts, qp (dict of QpSettings), lemke (dict of\n"
+           "LemkeSettings).")
       .def("step", &PySimulator::step, py::arg("applied") = py::none(),
            "Advances one step of dt. applied: None or (nbodies, 3) array of (fx, fy, torque) in\n"
            "N, N, N*m per body (static bodies' rows ignored). Returns StepStats.")
