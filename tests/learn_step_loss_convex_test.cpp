@@ -290,6 +290,33 @@ TEST(StepLossConvex, PileIslandFiniteDifferences) {
   EXPECT_LE(kinks_dual, 20);
 }
 
+// Phase 2 with the open contacts released (ConvexStepLossSettings::release_open_contacts):
+// the forward at w = 0, r = 0 is the simulator's model with the release, which differs from
+// the model without it on this island (the release acts), and the gradient, with the
+// released set held fixed, matches central differences as in PileIslandFiniteDifferences.
+TEST(StepLossConvex, ReleasedOpenContactsForwardAndFiniteDifferences) {
+  const ContactSystem s = pile_island(20, 3, 150);
+  ConvexStepLossSettings model = tight(ConvexFormulation::lifted, 0.0, 1e-10);
+  model.phase1_regularization = 0.0;
+  model.release_open_contacts = true;
+  const Vector target = noisy(s.v_star, 0.1, 3);
+  const StepLossResult r = convex_step_loss(s, target, kDt, model);
+  const ContactSolution released =
+      solve_convex_model(s, kDt, model.qp, model.rho, ConvexFormulation::lifted, {}, nullptr, true);
+  const ContactSolution plain = solve_convex_model(s, kDt, model.qp, model.rho, ConvexFormulation::lifted);
+  ASSERT_TRUE(has_solution(r.status) && has_solution(released.status) && has_solution(plain.status)) << r.message;
+  EXPECT_LE((r.v_next - released.v_next).lpNorm<Eigen::Infinity>(), 1e-7);
+  const double effect = (released.v_next - plain.v_next).lpNorm<Eigen::Infinity>();
+  std::printf("pile island: release moves v+ by %.3e m/s\n", effect);
+  EXPECT_GT(effect, 1e-4) << "no contact of this island was released";
+
+  ConvexStepLossSettings lifted = tight(ConvexFormulation::lifted, 1.0, 1e-10);
+  lifted.release_open_contacts = true;
+  const Vector near = target_near_solution(s, lifted);
+  const int kinks = check_gradient(s, near, lifted, "pile released lifted", 40, 0.2);
+  EXPECT_LE(kinks, 20);
+}
+
 TEST(StepLossConvex, FrictionlessIslandFiniteDifferences) {  // μ = 0: no friction rows
   const ContactSystem s = boxes(2, 0.0, {Vec3(0.3, -0.1, 0.02), Vec3(-0.2, -0.2, -0.03)});
   ASSERT_EQ(s.num_friction(), 0);

@@ -121,6 +121,8 @@ class ConvexStepSolve {
     }
     lambda1_ = r1.x.segment(p1_.lambda_offset, nc);
     const double kappa = lambda1_.cwiseMax(0.0).sum();
+    if (settings.release_open_contacts)
+      lcprelax::detail::release_open_contacts(data_->model, lambda1_.cwiseMax(0.0), p2_.problem, p2_.lambda_offset);
     bool solved2 = false;
     for (double slack : kKappaSlack) {
       p2_.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;

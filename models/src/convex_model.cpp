@@ -109,7 +109,7 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // Phase 2: friction, bounded by κ, with the normal softening term on λn.
   t0 = std::chrono::steady_clock::now();
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
-  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2);
+  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset);
   c.stats.assemble_seconds += seconds_since(t0);
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;

@@ -87,6 +87,11 @@ struct ConvexStepLossSettings {
   /// gradient agrees with central differences to 1e-5. r = 0 is the simulator's model
   /// exactly (solve_convex_model); r > 0 moves v⁺ by O(r) of the normal impulses.
   double phase1_regularization = 1e-3;
+  /// Phase 2 puts no normal impulse on an open contact (φ > 0) that phase 1's answer leaves
+  /// open (SimulatorSettings::convex_release_open_contacts, models/convex_phase_qp.hpp). Which
+  /// contacts are released is decided from the forward solve and held fixed in the gradient
+  /// (a bound λn_i ≤ 0 of phase 2, constant in the data), like an active set.
+  bool release_open_contacts = false;
 
   /// Empty when valid, else a message naming the first bad field ("rho: must be ...").
   std::string validation_error() const;

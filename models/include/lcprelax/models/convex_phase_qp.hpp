@@ -82,7 +82,8 @@ ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTe
 /// λn_i ≤ 0 (xu = 0; λt_i then vanishes by its cone rows). Without it phase 2 may spend
 /// phase 1's budget κ on such contacts and hold bodies at a gap up to the contact margin
 /// (measured in docs/formulations.md). Returns how many contacts were released.
-Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, ConvexPhaseQp& p2);
+/// `phase2` is phase 2's QP with λn from column `lambda_offset` (ConvexPhaseQp's).
+Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, QpProblem& phase2, Index lambda_offset);
 
 /// Relative loosenings of phase 2's bound eᵀλn ≤ κ(1 + slack) + 1e-12 N·s, tried in order
 /// (convex_model.cpp explains why; the Newton path uses the first).
