@@ -118,7 +118,7 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   }
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
-  //    request when there is a perturbed solution (skip_exact_cold).
+  //    request when there is a perturbed solution (skip_exact_cold, accept_perturbed).
   if (!solved(r) && !((skip_exact_cold || accept_perturbed) && inexact)) r = &attempt(exact, lcp.q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;

@@ -47,7 +47,8 @@ struct LcpModelAttempts {
 /// 3 was 94% of the pivots (300-body pile, bench/results/learn_scene_hard_stored_bases.txt).
 /// `warm_factorization`: step 1's solver factorizes the warm basis in it (solve_lcp_model).
 /// `accept_perturbed`: when step 1b solves q + δu, that answer is taken without its polish
-/// on q and without steps 2–5 (source perturbed, solved_inaccurate): for a caller whose
+/// on q and without steps 2–5 (source perturbed, solved_inaccurate), and step 3 is skipped
+/// as with skip_exact_cold when step 2 gave a perturbed answer: for a caller whose
 /// previous LCP of this island ended perturbed after those had failed (a jammed pile at
 /// rest; contact_step.hpp kLcpExactRetrySteps).
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
