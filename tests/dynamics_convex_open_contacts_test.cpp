@@ -10,6 +10,13 @@
 // - with it, by the interior point and by the active-set Newton method, no body is more
 //   than 1 mm from a support (measured 4e-8 m by the interior point, 5e-9 m by Newton) and
 //   no island fails.
+// Phase 2 with the release can have no solution: friction may drive a body into a contact
+// that phase 1 left open, whose λn the release fixes at 0. Phase 2 is then solved without
+// the release (ContactSolution::open_contacts_held). A 30-body pile (seed 1, one
+// post-stabilization pass) meets this at its 41st step: before that fallback, phase 2
+// stopped with "no progress" at every κ slack and the island failed.
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
 #include <lcprelax/scenes/scene.hpp>
@@ -69,6 +76,34 @@ TEST(ConvexOpenContacts, ActiveSetNewtonRestsEveryBodyOnASupport) {
 
 TEST(ConvexOpenContacts, DefaultIsOff) {
   EXPECT_FALSE(SimulatorSettings().convex_release_open_contacts);
+}
+
+TEST(ConvexOpenContacts, PhaseTwoWithoutASolutionUnderTheReleaseIsSolvedWithout) {
+  PileOptions options;
+  options.bodies = 30;
+  options.seed = 1;
+  options.model = ContactModel::convex;
+  SimulatorSettings settings;
+  settings.threads = 1;
+  settings.post_stabilization_passes = 1;
+  settings.convex_release_open_contacts = true;
+  Simulator sim = make_simulator(make_pile_scene(options), settings);
+  int failed = 0;
+  for (int k = 0; k < 40; ++k) failed += sim.step().failed_islands;
+  EXPECT_EQ(failed, 0);
+  // The 41st step's islands, solved as the simulator does (fresh solvers).
+  const StepContacts sc = find_step_contacts(sim.world(), sim.settings());
+  int held = 0;
+  for (const Island& island : sc.islands) {
+    const ContactSystem s = assemble_contact_system(sim.world(), sc.contacts, island, settings.dt);
+    const ContactSolution sol = solve_convex_model(s, settings.dt, settings.qp, settings.convex_rho,
+                                                   settings.convex_formulation, settings.convex_softening, nullptr, true);
+    EXPECT_TRUE(has_solution(sol.status)) << sol.message;
+    held += sol.open_contacts_held ? 1 : 0;
+  }
+  EXPECT_EQ(held, 1);
+  for (int k = 40; k < 60; ++k) failed += sim.step().failed_islands;
+  EXPECT_EQ(failed, 0);
 }
 
 }  // namespace

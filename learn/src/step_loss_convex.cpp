@@ -121,22 +121,27 @@ class ConvexStepSolve {
     }
     lambda1_ = r1.x.segment(p1_.lambda_offset, nc);
     const double kappa = lambda1_.cwiseMax(0.0).sum();
-    if (settings.release_open_contacts)
-      lcprelax::detail::release_open_contacts(data_->model, lambda1_.cwiseMax(0.0), p2_.problem, p2_.lambda_offset);
+    // As the simulator (models/src/convex_model.cpp): where phase 2 has no solution with the
+    // release of open contacts, it is solved again without it.
     bool solved2 = false;
-    for (double slack : kKappaSlack) {
-      p2_.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
-      if (slack == kKappaSlack[0])
-        s2_->setup(p2_.problem);
-      else
-        s2_->update(p2_.problem);
-      const QpResult& r2 = s2_->solve();
-      result.work += r2.info.iterations;
-      if (has_solution(r2.info.status)) {
-        solved2 = true;
-        slack_used_ = slack;
-        break;
+    for (const bool release : {settings.release_open_contacts, false}) {
+      if (release) lcprelax::detail::release_open_contacts(data_->model, lambda1_.cwiseMax(0.0), p2_.problem, p2_.lambda_offset);
+      for (double slack : kKappaSlack) {
+        p2_.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
+        if (slack == kKappaSlack[0])
+          s2_->setup(p2_.problem);
+        else
+          s2_->update(p2_.problem);
+        const QpResult& r2 = s2_->solve();
+        result.work += r2.info.iterations;
+        if (has_solution(r2.info.status)) {
+          solved2 = true;
+          slack_used_ = slack;
+          break;
+        }
       }
+      if (solved2 || !release) break;
+      p2_ = detail::convex_loss_phase2(*data_, soft);  // without the release
     }
     const QpResult& r2 = s2_->result();
     if (!solved2) {

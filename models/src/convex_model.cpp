@@ -106,22 +106,30 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // interior point no interior (measured: "no progress" failures on 1-2 contact islands).
   const double kappa = lambda1.sum();
 
-  // Phase 2: friction, bounded by κ, with the normal softening term on λn.
-  t0 = std::chrono::steady_clock::now();
-  detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
-  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset);
-  c.stats.assemble_seconds += seconds_since(t0);
+  // Phase 2: friction, bounded by κ, with the normal softening term on λn. With the release
+  // of open contacts, phase 2 can be infeasible: friction may drive a body into a contact
+  // that phase 1 left open, whose λn is then fixed at 0 (30-body pile, seed 1, step 40:
+  // "no progress" at every κ slack). Phase 2 is then solved again without the release.
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;
-  for (double slack : detail::kKappaSlacks) {
-    p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
-    if (slack == detail::kKappaSlacks[0])
-      prepare(qp2, p2.problem, c);
-    else
-      qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
-    r2 = &timed_solve(qp2, c);
-    out.work += r2->info.iterations;
-    if (has_solution(r2->info.status)) break;
+  detail::ConvexPhaseQp p2;
+  for (const bool release : {release_open_contacts, false}) {
+    t0 = std::chrono::steady_clock::now();
+    p2 = detail::convex_phase2_qp(data, soft);
+    if (release) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset);
+    c.stats.assemble_seconds += seconds_since(t0);
+    for (double slack : detail::kKappaSlacks) {
+      p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
+      if (slack == detail::kKappaSlacks[0])
+        prepare(qp2, p2.problem, c);
+      else
+        qp2.update(p2.problem);  // only the bound changed: the symbolic analysis is kept
+      r2 = &timed_solve(qp2, c);
+      out.work += r2->info.iterations;
+      if (has_solution(r2->info.status)) break;
+    }
+    if (has_solution(r2->info.status) || !release) break;
+    out.open_contacts_held = true;
   }
   out.residual = std::max(r2->info.primal_residual, r2->info.dual_residual);
   if (!has_solution(r2->info.status)) {

@@ -189,6 +189,9 @@ struct ContactSolution {
   /// Convex model with ConvexSolver::active_set_newton: a phase did not converge by the
   /// active-set method and the interior point's answer (all of it) was used.
   bool newton_fallback = false;
+  /// Convex model with release_open_contacts: phase 2 had no solution with the release
+  /// (friction drives a body into a contact that phase 1 left open) and was solved without.
+  bool open_contacts_held = false;
 };
 
 struct StewartTrinkleLcp {
@@ -251,7 +254,8 @@ struct ConvexSolverCache;  // convex_solver_cache.hpp
 /// analysis reused), else set up afresh. The answer is that of the fresh solve to roundoff.
 /// `release_open_contacts`: phase 2 puts no normal impulse on an open contact (φ > 0) that
 /// phase 1's frictionless answer leaves open (detail::release_open_contacts,
-/// convex_phase_qp.hpp; SimulatorSettings::convex_release_open_contacts).
+/// convex_phase_qp.hpp; SimulatorSettings::convex_release_open_contacts). Where phase 2 has no solution with the
+/// release, it is solved without it (ContactSolution::open_contacts_held).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                    ConvexSolverCache* cache, bool release_open_contacts = false);
