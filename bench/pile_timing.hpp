@@ -26,6 +26,7 @@
 #include <ctime>
 #include <cmath>
 #include <limits>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -70,8 +71,9 @@ struct SettleResult {
 
 /// Drops `scene` and steps it with `settings` until it settles (see the file comment).
 /// `min_steps` steps are always taken (the bodies start at rest-ish speeds in the air).
+/// With `progress`, one line every 50 steps (step, wall seconds, contacts, speed).
 inline SettleResult settle_pile(Scene scene, const SimulatorSettings& settings, int min_steps, int max_steps,
-                                double speed_tol, double budget) {
+                                double speed_tol, double budget, std::ostream* progress = nullptr) {
   Simulator sim = make_simulator(scene, settings);
   SettleResult r;
   const double e0 = sim.total_energy();
@@ -89,6 +91,9 @@ inline SettleResult settle_pile(Scene scene, const SimulatorSettings& settings, 
     if (st.failed_islands > 0 && r.failed_islands == 0) r.first_failure = st.first_failure;
     r.failed_islands += st.failed_islands;
     r.final_speed = max_body_speed(sim.world());
+    if (progress && (k + 1) % 50 == 0)
+      *progress << "  settle step " << k + 1 << ": " << now_seconds() - t0 << " s, " << st.contacts << " contacts, speed "
+                << r.final_speed << " m/s" << std::endl;
     if (k + 1 >= min_steps && r.final_speed <= speed_tol) {
       r.settled = true;
       break;

@@ -177,22 +177,28 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
     SimulatorSettings one_thread;
     one_thread.threads = 1;
     one_thread.convex_release_open_contacts = true;
-    const SettleResult convex = settle_pile(std::move(scene), one_thread, settle_steps, settle_steps, 0.0, 1e30);
+    std::cerr << engine << ", " << bodies << " bodies: convex settle" << std::endl;
+    const SettleResult convex = settle_pile(std::move(scene), one_thread, settle_steps, settle_steps, 0.0, 1e30, &std::cerr);
     r = make_runner(engine, convex.scene);
     int lcp_steps = 0;
     double speed = max_body_speed(r->world());
     while (lcp_steps < lcp_resettle_max_steps && (lcp_steps == 0 || speed > kRestSpeed)) {
-      r->step();
+      const double seconds = r->step();
       ++lcp_steps;
       speed = max_body_speed(r->world());
+      std::cerr << "  LCP re-settle step " << lcp_steps << ": " << seconds << " s, speed " << speed << " m/s" << std::endl;
     }
     char buf[160];
     std::snprintf(buf, sizeof buf, " with the convex model (open contacts released; %d failed islands), then %d with the LCP model (speed %.3g m/s)",
                   static_cast<int>(convex.failed_islands), lcp_steps, speed);
     settled += buf;
   } else {
+    std::cerr << engine << ", " << bodies << " bodies: " << settle_steps << " settle steps" << std::endl;
     r = make_runner(engine, make_pile_scene(p));
-    for (int k = 0; k < settle_steps; ++k) r->step();
+    for (int k = 0; k < settle_steps; ++k) {
+      const double seconds = r->step();
+      if ((k + 1) % 50 == 0) std::cerr << "  settle step " << k + 1 << ": " << seconds << " s this step" << std::endl;
+    }
   }
   Row row;
   row.test = "pile";
@@ -202,11 +208,13 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
   row.steps = steps;
   const long failed0 = r->failed();
   double total = 0.0, cpu = 0.0, contacts = 0.0;
+  std::cerr << engine << ", " << bodies << " bodies: " << steps << " timed steps" << std::endl;
   for (int k = 0; k < steps; ++k) {
     const double c0 = cpu_seconds();
     total += r->step();
     cpu += cpu_seconds() - c0;
     contacts += r->contacts();
+    if ((k + 1) % 5 == 0) std::cerr << "  step " << k + 1 << ": " << total << " s so far" << std::endl;
     row.max_penetration = std::max(row.max_penetration, r->own_penetration());
     row.polygon_overlap = std::max(row.polygon_overlap, polygon_overlap(r->world()));
   }
