@@ -18,8 +18,8 @@
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/models/simulator.hpp>
-#include <lcprelax/scenes/pile_scene.hpp>
-#include <lcprelax/scenes/scene.hpp>
+
+#include "dynamics_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,15 +35,11 @@ struct SettledPile {
 };
 
 SettledPile drop_pile(bool release, ConvexSolver solver) {
-  PileOptions options;
-  options.bodies = 60;
-  options.seed = 1;
-  options.model = ContactModel::convex;
   SimulatorSettings settings;
   settings.threads = 1;
   settings.convex_solver = solver;
   settings.convex_release_open_contacts = release;
-  Simulator sim = make_simulator(make_pile_scene(options), settings);
+  Simulator sim = test::pile_simulator(60, 1, ContactModel::convex, settings);
   SettledPile out;
   for (int k = 0; k < 200; ++k) out.failed_islands += sim.step().failed_islands;
   const World& world = sim.world();
@@ -79,15 +75,11 @@ TEST(ConvexOpenContacts, DefaultIsOff) {
 }
 
 TEST(ConvexOpenContacts, PhaseTwoWithoutASolutionUnderTheReleaseIsSolvedWithout) {
-  PileOptions options;
-  options.bodies = 30;
-  options.seed = 1;
-  options.model = ContactModel::convex;
   SimulatorSettings settings;
   settings.threads = 1;
   settings.post_stabilization_passes = 1;
   settings.convex_release_open_contacts = true;
-  Simulator sim = make_simulator(make_pile_scene(options), settings);
+  Simulator sim = test::pile_simulator(30, 1, ContactModel::convex, settings);
   int failed = 0;
   for (int k = 0; k < 40; ++k) failed += sim.step().failed_islands;
   EXPECT_EQ(failed, 0);

@@ -54,17 +54,22 @@ inline Scene incline_scene(double angle, double mu, double dt, ContactModel mode
   return scene_with({box(0.2, 0.2, 1.0, Vec3(c.x(), c.y(), angle))}, mu, dt, model, angle);
 }
 
-/// A simulator of make_pile_scene(bodies, seed) with `model`, one thread and
-/// `passes` post-stabilization passes (the rest of SimulatorSettings at its defaults).
-inline Simulator pile_simulator(int bodies, std::uint64_t seed, ContactModel model, int passes = 5) {
+/// A simulator of make_pile_scene(bodies, seed) with `model` and `settings` as given.
+inline Simulator pile_simulator(int bodies, std::uint64_t seed, ContactModel model, const SimulatorSettings& settings) {
   PileOptions options;
   options.bodies = bodies;
   options.seed = seed;
   options.model = model;
+  return make_simulator(make_pile_scene(options), settings);
+}
+
+/// A simulator of make_pile_scene(bodies, seed) with `model`, one thread and
+/// `passes` post-stabilization passes (the rest of SimulatorSettings at its defaults).
+inline Simulator pile_simulator(int bodies, std::uint64_t seed, ContactModel model, int passes = 5) {
   SimulatorSettings settings;
   settings.threads = 1;
   settings.post_stabilization_passes = passes;
-  return make_simulator(make_pile_scene(options), settings);
+  return pile_simulator(bodies, seed, model, settings);
 }
 
 /// `count` unit boxes (1 m, 1 kg) stacked on the ground at x = 0, every gap 0.

@@ -71,14 +71,10 @@ TEST(LcpAcceptPerturbed, SimulatorTakesCheapPerturbedStepsOnAJammedPile) {
   // A 200-body pile settled by the convex model (releasing open contacts, so that no body
   // is held above its supports), then stepped by the lcp model: it comes to rest in a
   // jammed configuration whose steps end on the perturbed answer.
-  PileOptions o;
-  o.bodies = 200;
-  o.seed = 1;
-  o.model = ContactModel::convex;
   SimulatorSettings settings;
   settings.threads = 1;
   settings.convex_release_open_contacts = true;
-  Simulator convex = make_simulator(make_pile_scene(o), settings);
+  Simulator convex = test::pile_simulator(200, 1, ContactModel::convex, settings);
   for (int k = 0; k < 400; ++k) convex.step();
   settings.model = ContactModel::lcp;
   Simulator sim(convex.world(), settings);
