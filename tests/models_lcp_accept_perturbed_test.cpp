@@ -8,11 +8,13 @@
 // - with accept_perturbed: 2 attempts (step 1 on q, infeasible; step 1b on q + δu) and 1
 //   pivot, status solved_inaccurate, residual on (M, q) within δ = 1e-7‖q‖∞;
 // - without: 5 attempts and 1,701 pivots, ending on a perturbed answer too.
-// The simulator on a pile that jams at rest (200 bodies, seed 1, settled 400 steps by the
-// convex model releasing open contacts, then 40 steps of the lcp model): 18 steps take the
-// perturbed answer without the full chain, each pivoting at most 5% of its unknowns (the
-// full chain: about 1,600 pivots of 2,856 in step 3 alone), no island fails, and the pile
-// stays at rest (1.9e-6 m/s).
+// The simulator on a 200-body pile (seed 1) settled 400 steps by the convex model releasing
+// open contacts, then 40 steps of the lcp model: no island fails, at most 5 steps end on a
+// perturbed answer, any step that takes it without the full chain pivots at most 5% of its
+// unknowns, and the pile is at rest (measured: 2–4 perturbed steps of 40 over seeds 1–4,
+// 1e-14 m/s). With the release's earlier criterion (no gap threshold, stop 56) this pile
+// jammed: 18 of 40 steps took the perturbed answer. No simulator fixture that jams is known
+// now; the acceptance itself is tested on the island above.
 #include <lcprelax/models/lcp_model_attempts.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
@@ -67,10 +69,7 @@ TEST(LcpAcceptPerturbed, RetryScheduleBacksOffExponentially) {
     EXPECT_FALSE(lcp_retry_exact(k)) << k;
 }
 
-TEST(LcpAcceptPerturbed, SimulatorTakesCheapPerturbedStepsOnAJammedPile) {
-  // A 200-body pile settled by the convex model (releasing open contacts, so that no body
-  // is held above its supports), then stepped by the lcp model: it comes to rest in a
-  // jammed configuration whose steps end on the perturbed answer.
+TEST(LcpAcceptPerturbed, ConvexSettledPileRestsUnderTheLcpModel) {
   SimulatorSettings settings;
   settings.threads = 1;
   settings.convex_release_open_contacts = true;
@@ -78,7 +77,7 @@ TEST(LcpAcceptPerturbed, SimulatorTakesCheapPerturbedStepsOnAJammedPile) {
   for (int k = 0; k < 400; ++k) convex.step();
   settings.model = ContactModel::lcp;
   Simulator sim(convex.world(), settings);
-  int streak = 0, accepted_steps = 0;
+  int streak = 0, accepted_steps = 0, perturbed_steps = 0;
   for (int k = 0; k < 40; ++k) {
     const bool accepts = !lcp_retry_exact(streak);
     const StepStats st = sim.step();
@@ -88,8 +87,9 @@ TEST(LcpAcceptPerturbed, SimulatorTakesCheapPerturbedStepsOnAJammedPile) {
       EXPECT_LE(st.work, 0.05 * st.largest_island_unknowns) << "step " << k;
     }
     streak = st.inaccurate_islands > 0 ? streak + 1 : 0;
+    perturbed_steps += st.inaccurate_islands > 0 ? 1 : 0;
   }
-  EXPECT_GE(accepted_steps, 5);
+  EXPECT_LE(perturbed_steps, 5);
   double speed = 0.0;  // largest body-point speed bound |v| + |ω|·r (m/s)
   for (const RigidBody& b : sim.world().bodies) {
     if (b.is_static) continue;
@@ -97,8 +97,9 @@ TEST(LcpAcceptPerturbed, SimulatorTakesCheapPerturbedStepsOnAJammedPile) {
     for (const Vec2& v : b.shape.vertices) r = std::max(r, v.norm());
     speed = std::max(speed, b.velocity.head<2>().norm() + std::abs(b.velocity(2)) * r);
   }
-  std::printf("[ measured ] accepted perturbed steps %d of 40, final speed %.3g m/s\n", accepted_steps, speed);
-  EXPECT_LT(speed, 1e-4);
+  std::printf("[ measured ] perturbed steps %d of 40 (%d taken without the full chain), final speed %.3g m/s\n",
+              perturbed_steps, accepted_steps, speed);
+  EXPECT_LT(speed, 1e-6);
 }
 
 }  // namespace

@@ -106,17 +106,18 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   // interior point no interior (measured: "no progress" failures on 1-2 contact islands).
   const double kappa = lambda1.sum();
 
-  // Phase 2: friction, bounded by κ, with the normal softening term on λn. With the release
-  // of open contacts, phase 2 can be infeasible: friction may drive a body into a contact
-  // that phase 1 left open, whose λn is then fixed at 0 (30-body pile, seed 1, step 40:
-  // "no progress" at every κ slack). Phase 2 is then solved again without the release.
+  // Phase 2: friction, bounded by κ, with the normal softening term on λn. Where it has no
+  // solution with the release of open contacts, it is solved again without it. Seen once,
+  // before release_open_contacts had its gap threshold (kOpenContactMinGap): a 30-body pile
+  // (seed 1, one projection pass) at its 41st step, "no progress" at every κ slack after a
+  // contact left just touching was released.
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;
   detail::ConvexPhaseQp p2;
   for (const bool release : {release_open_contacts, false}) {
     t0 = std::chrono::steady_clock::now();
     p2 = detail::convex_phase2_qp(data, soft);
-    if (release) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset);
+    if (release) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset, dt);
     c.stats.assemble_seconds += seconds_since(t0);
     for (double slack : detail::kKappaSlacks) {
       p2.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;

@@ -77,7 +77,7 @@ ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, con
   detail::ConvexPhaseQp p2 = detail::convex_phase2_qp(data, soft);
   // The interior point's first loosening, so that both methods solve the same QP.
   p2.problem.u(nc) = kappa * (1.0 + detail::kKappaSlacks[0]) + 1e-12;
-  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset);
+  if (release_open_contacts) detail::release_open_contacts(data, lambda1, p2.problem, p2.lambda_offset, dt);
   const Index o2 = p2.lambda_offset;
   std::vector<detail::ActiveState> rows2(static_cast<std::size_t>(p2.problem.num_inequalities()), 0);
   std::vector<detail::ActiveState> b2(static_cast<std::size_t>(p2.problem.num_variables()), 0);

@@ -152,13 +152,15 @@ ConvexPhaseQp convex_phase2_qp(const ConvexModelData& d, const NormalSofteningTe
   return out;
 }
 
-Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, QpProblem& phase2, Index lambda_offset) {
+Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, QpProblem& phase2, Index lambda_offset,
+                            double dt) {
   const ContactSystem& s = d.s;
   const Index nc = s.num_contacts();
   const Vector slack = d.bn + s.Jn * s.minv.cwiseProduct(s.Jn.transpose() * lambda1);  // Jn v1 + max(φ, 0)/Δt
+  const double min_slack = kOpenContactMinGap / dt;  // m/s
   Index released = 0;
   for (Index i = 0; i < nc; ++i)
-    if (s.phi(i) > 0.0 && slack(i) > d.w_nn(i) * lambda1(i)) {
+    if (s.phi(i) > 0.0 && slack(i) > d.w_nn(i) * lambda1(i) + min_slack) {
       phase2.xu(lambda_offset + i) = 0.0;
       ++released;
     }

@@ -189,8 +189,8 @@ struct ContactSolution {
   /// Convex model with ConvexSolver::active_set_newton: a phase did not converge by the
   /// active-set method and the interior point's answer (all of it) was used.
   bool newton_fallback = false;
-  /// Convex model with release_open_contacts: phase 2 had no solution with the release
-  /// (friction drives a body into a contact that phase 1 left open) and was solved without.
+  /// Convex model with release_open_contacts: phase 2 had no solution with the release and
+  /// was solved without it.
   bool open_contacts_held = false;
 };
 

@@ -74,16 +74,26 @@ struct ConvexPhaseTerms {
 ConvexPhaseQp convex_phase1_qp(const ConvexModelData& d, const NormalSofteningTerms& softening,
                                const ConvexPhaseTerms& terms = {});
 
+/// A contact counts as open for release_open_contacts when phase 1 leaves its gap at the
+/// end of the step wider than this (m): SimulatorSettings' default penetration slop, the
+/// depth within which contacts count as resting. Without a threshold the decision at a
+/// contact that phase 1 leaves exactly touching and unloaded (gap velocity and λ1 both ≈ 0,
+/// common in stacks) follows the solver's roundoff, and the step jumps with it: on two
+/// stacked boxes the convex loss jumped by 0.014 under a 1e-6 m change of one φ.
+inline constexpr double kOpenContactMinGap = 1e-4;
+
 /// Phase 2 puts no normal impulse on an open contact that phase 1 leaves open
 /// (SimulatorSettings::convex_release_open_contacts): contact i with φ_i > 0 whose normal
-/// velocity under phase 1's frictionless impulses λ1 still does not close its gap within the
-/// step, bn_i + (Wnn λ1)_i > Wnn_ii λ1_i (the velocity slack exceeds λ1_i's own velocity
-/// contribution; phase 1's complementarity makes one of the two ≈ 0), gets the bound
+/// velocity under phase 1's frictionless impulses λ1 leaves its gap open by more than
+/// kOpenContactMinGap at the end of the step `dt` (s), bn_i + (Wnn λ1)_i > Wnn_ii λ1_i +
+/// kOpenContactMinGap/dt (the velocity slack exceeds λ1_i's own velocity contribution by
+/// that margin; phase 1's complementarity makes one of the two ≈ 0), gets the bound
 /// λn_i ≤ 0 (xu = 0; λt_i then vanishes by its cone rows). Without it phase 2 may spend
 /// phase 1's budget κ on such contacts and hold bodies at a gap up to the contact margin
 /// (measured in docs/formulations.md). Returns how many contacts were released.
 /// `phase2` is phase 2's QP with λn from column `lambda_offset` (ConvexPhaseQp's).
-Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, QpProblem& phase2, Index lambda_offset);
+Index release_open_contacts(const ConvexModelData& d, const Vector& lambda1, QpProblem& phase2, Index lambda_offset,
+                            double dt);
 
 /// Relative loosenings of phase 2's bound eᵀλn ≤ κ(1 + slack) + 1e-12 N·s, tried in order
 /// (convex_model.cpp explains why; the Newton path uses the first).
