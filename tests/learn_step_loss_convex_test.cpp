@@ -267,9 +267,9 @@ TEST(StepLossConvex, HandMadeIslandsFiniteDifferences) {
 // changes v⁺ in 6 of the 12 cases (measured: the sliding box in all 4, the two stacked
 // boxes in 2; phase 1 leaves no other gap open by more than kOpenContactMinGap). Solved to
 // eps 1e-14: at 1e-12, three entries of the stacked boxes at w = 0 (minv[0], v_star[0])
-// miss the 1e-5 bound by up to 2.5e-5, the forward's tolerance. Before the gap threshold,
-// the loss jumped by 0.014 under a 1e-6 m change of a φ where a just-touching contact's
-// release flipped.
+// miss the 1e-5 bound by up to 2.5e-5, the forward's tolerance. With the gap threshold set
+// to 0, the loss jumps by 0.014 under a 1e-6 m change of a φ where a just-touching
+// contact's release flips.
 TEST(StepLossConvex, HandMadeIslandsWithReleaseFiniteDifferences) {
   int released = 0;
   for (const NamedIsland& is : hand_made())

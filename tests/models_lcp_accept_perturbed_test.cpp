@@ -12,9 +12,9 @@
 // open contacts, then 40 steps of the lcp model: no island fails, at most 5 steps end on a
 // perturbed answer, any step that takes it without the full chain pivots at most 5% of its
 // unknowns, and the pile is at rest (measured: 2–4 perturbed steps of 40 over seeds 1–4,
-// 1e-14 m/s). With the release's earlier criterion (no gap threshold, stop 56) this pile
-// jammed: 18 of 40 steps took the perturbed answer. No simulator fixture that jams is known
-// now; the acceptance itself is tested on the island above.
+// 1e-14 m/s). With the release's gap threshold (kOpenContactMinGap) set to 0 this pile
+// jams: 18 of 40 steps took the perturbed answer. No simulator fixture that jams is known
+// with the threshold; the acceptance itself is tested on the island above.
 #include <lcprelax/models/lcp_model_attempts.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>

@@ -125,8 +125,8 @@ class ConvexStepSolve {
     // release of open contacts, it is solved again without it.
     bool solved2 = false;
     for (const bool release : {settings.release_open_contacts, false}) {
-      if (release) lcprelax::detail::release_open_contacts(data_->model, lambda1_.cwiseMax(0.0), p2_.problem, p2_.lambda_offset,
-                                                         dt);
+      if (release)
+        lcprelax::detail::release_open_contacts(data_->model, lambda1_.cwiseMax(0.0), p2_.problem, p2_.lambda_offset, dt);
       for (double slack : kKappaSlack) {
         p2_.problem.u(nc) = kappa * (1.0 + slack) + 1e-12;
         if (slack == kKappaSlack[0])

@@ -107,10 +107,10 @@ ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSe
   const double kappa = lambda1.sum();
 
   // Phase 2: friction, bounded by κ, with the normal softening term on λn. Where it has no
-  // solution with the release of open contacts, it is solved again without it. Seen once,
-  // before release_open_contacts had its gap threshold (kOpenContactMinGap): a 30-body pile
-  // (seed 1, one projection pass) at its 41st step, "no progress" at every κ slack after a
-  // contact left just touching was released.
+  // solution with the release of open contacts, it is solved again without it: a guard. No
+  // such case is known with release_open_contacts' gap threshold; with the threshold set to
+  // 0, a 30-body pile (seed 1, one projection pass) stalled at its 41st step ("no progress"
+  // at every κ slack) after a contact left just touching was released.
   const QpResult* r2 = nullptr;
   QpSolver& qp2 = c.phase2;
   detail::ConvexPhaseQp p2;

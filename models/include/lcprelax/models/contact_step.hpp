@@ -254,8 +254,8 @@ struct ConvexSolverCache;  // convex_solver_cache.hpp
 /// analysis reused), else set up afresh. The answer is that of the fresh solve to roundoff.
 /// `release_open_contacts`: phase 2 puts no normal impulse on an open contact (φ > 0) that
 /// phase 1's frictionless answer leaves open (detail::release_open_contacts,
-/// convex_phase_qp.hpp; SimulatorSettings::convex_release_open_contacts). Where phase 2 has no solution with the
-/// release, it is solved without it (ContactSolution::open_contacts_held).
+/// convex_phase_qp.hpp; SimulatorSettings::convex_release_open_contacts). Where phase 2 has
+/// no solution with the release, it is solved without it (ContactSolution::open_contacts_held).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                    ConvexSolverCache* cache, bool release_open_contacts = false);
