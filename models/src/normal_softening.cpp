@@ -91,8 +91,10 @@ NormalSofteningTerms phase1_softening_terms(const NormalSofteningTerms& terms) {
   NormalSofteningTerms t = terms;
   for (Index i = 0; i < t.v_ref.size(); ++i)
     if (!(t.v_ref(i) > 0.0)) {
+      // At v_ref = 0 the e-derivative stays: dvref_derp ≥ 0, so for e growing from its
+      // bound 0 max(v_ref, 0) = v_ref (header).
+      if (t.dvref_derp.size() > 0 && !(t.v_ref(i) == 0.0)) t.dvref_derp(i) = 0.0;
       t.v_ref(i) = 0.0, t.dvref_dphi(i) = 0.0, t.dvref_dvn(i) = 0.0;
-      if (t.dvref_derp.size() > 0) t.dvref_derp(i) = 0.0;
     }
   return t;
 }

@@ -101,8 +101,11 @@ NormalSofteningTerms normal_softening_terms(const NormalSofteningSettings& setti
 void add_pair_softness(NormalSofteningTerms& terms, const Vector& phi, const Vector& compliance, const Vector& erp,
                        double dt);
 
-/// Phase 1's terms: v_ref replaced by max(v_ref, 0) (derivatives 0 where v_ref ≤ 0: a kink
-/// at v_ref = 0); g unchanged (phase 1 does not use it).
+/// Phase 1's terms: v_ref replaced by max(v_ref, 0) (derivatives 0 where v_ref < 0; a kink
+/// at v_ref = 0); g unchanged (phase 1 does not use it). At v_ref = 0 exactly the derivative
+/// in e is kept (the one-sided derivative into e ≥ 0: v_ref is nondecreasing in e, so at
+/// the rigid start e = 0 on an overlapping contact max(v_ref, 0) = v_ref for every e ≥ 0),
+/// the others are 0.
 NormalSofteningTerms phase1_softening_terms(const NormalSofteningTerms& terms);
 
 }  // namespace lcprelax
