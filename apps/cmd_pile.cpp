@@ -11,10 +11,8 @@
 // finite and in range (dt > 0, gravity ≥ 0 and ≤ 1e15, qp-eps > 0, lemke-tol ≥ 0).
 // --post-stabilization-passes K ≥ 1 (SimulatorSettings::post_stabilization_passes): after
 // the linearized position projection, up to K − 1 passes on the true overlaps.
-// --hold-open-contacts (convex model only; SimulatorSettings::convex_release_open_contacts =
-// false): phase 2 may put normal impulse on a contact whose gap phase 1 leaves open
-// (Anitescu's relaxation as posed). --release-open-contacts is the default, accepted for
-// scripts; both together are bad input.
+// --release-open-contacts (convex model only; SimulatorSettings::convex_release_open_contacts):
+// phase 2 puts no normal impulse on a contact whose gap phase 1 leaves open.
 // Human output: a brief report (cli_report.hpp) of the JSON fields plus the scene's name,
 // time step and gravity.
 // JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
@@ -65,8 +63,7 @@ struct PileCliOptions {
   double qp_eps = SimulatorSettings{}.qp.eps_abs;
   double lemke_tol = SimulatorSettings{}.lemke.residual_tolerance;
   int projection_passes = SimulatorSettings{}.post_stabilization_passes;
-  bool release_open_contacts = false;  // the default; accepted for scripts
-  bool hold_open_contacts = false;
+  bool release_open_contacts = false;
   bool draw_contacts = false;
   bool json = false;
 };
@@ -177,16 +174,12 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
                    "applies to the convex model only (this run's model is lcp)");
     scene.settings.convex_softening.method = parse_normal_softening(o.softening);
   }
-  for (const auto& [given, flag] : {std::pair{o.release_open_contacts, "--release-open-contacts"},
-                                    std::pair{o.hold_open_contacts, "--hold-open-contacts"}})
-    if (given)
-      require_option(scene.settings.model == ContactModel::convex, flag,
-                     "applies to the convex model only (this run's model is lcp)");
-  require_option(!(o.release_open_contacts && o.hold_open_contacts), "--hold-open-contacts",
-                 "cannot be combined with --release-open-contacts");
+  if (o.release_open_contacts)
+    require_option(scene.settings.model == ContactModel::convex, "--release-open-contacts",
+                   "applies to the convex model only (this run's model is lcp)");
   SimulatorSettings settings;
   settings.threads = o.threads;
-  settings.convex_release_open_contacts = !o.hold_open_contacts;
+  settings.convex_release_open_contacts = o.release_open_contacts;
   apply_physics_options(o, app, scene, settings);
   const int steps = scene.steps;
   const std::string model = to_string(scene.settings.model);
@@ -301,11 +294,9 @@ Command add_pile_command(CLI::App& parent) {
                   "further one on the overlaps still deeper than 0.1 mm at the projected positions (5 keeps a "
                   "dropping pile's overlaps near 0.1 mm)")
       ->capture_default_str();
-  app->add_flag("--hold-open-contacts", o->hold_open_contacts,
-                "convex model: allow normal impulse on a contact whose gap stays open (Anitescu's relaxation as "
-                "posed: bodies can rest up to the 1 cm contact margin above their supports; docs/formulations.md)");
   app->add_flag("--release-open-contacts", o->release_open_contacts,
-                "convex model: no normal impulse on a contact whose gap stays open (the default)");
+                "convex model: no normal impulse on a contact whose gap stays open (without it, bodies can rest "
+                "up to the 1 cm contact margin above their supports; docs/formulations.md)");
   add_threads_option(*app, o->threads, "the groups of touching bodies (islands)");
   app->add_option("--seed", o->seed, "random seed of the polygons' shapes, positions and velocities")->capture_default_str();
   app->add_option("--scene", o->scene, "simulate this scene JSON file (docs/formats.md) instead of a random pile");

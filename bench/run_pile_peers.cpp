@@ -15,7 +15,7 @@
 //   Δt = 0.01 s, μ = 0.5. Each engine drops and settles it for --settle-steps steps, then
 //   runs --steps timed steps (with --lcp-resettle-max-steps K > 0, lcprelax_lcp's pile is
 //   settled by the convex model for --settle-steps steps, with convex_release_open_contacts
-//   (the default) so that no body is left held above its supports, then by the LCP model until every
+//   so that no body is left held above its supports, then by the LCP model until every
 //   body point is slower than 1e-3 m/s, at most K steps; the note says how many): seconds_per_step (wall, the engine's step call only),
 //   contacts_mean (lcprelax: contacts entering the problem, within the speculative margin;
 //   Box2D: manifold points of touching contacts), max_penetration (the engine's own
@@ -168,8 +168,7 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
   if (engine == "lcprelax_lcp" && lcp_resettle_max_steps > 0) {
     // Dropped and settled by the convex model (no speed test: exactly settle_steps steps),
     // then stepped by the LCP model until at rest: dropping a pile of 1,000 bodies with the
-    // LCP model takes hours. The convex model releases open contacts (its default, set here
-    // all the same): without it, bodies
+    // LCP model takes hours. The convex model releases open contacts: without it, bodies
     // held above their supports within the contact margin fall under the LCP model and
     // the pile rearranges (200 bodies: still 0.17 m/s after 40 LCP steps, against at rest
     // after 3 with it).

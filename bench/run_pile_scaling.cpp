@@ -4,7 +4,7 @@
 //   run_pile_scaling [--sizes 10,20,...] [--steps 10] [--warmup 2] [--models lcp,convex,convex-fresh,convex-newton]
 //                    [--threads 1,2] [--lcp-max-bodies 100] [--budget 60]
 //                    [--settle-max-steps 150] [--settle-speed 0.05] [--settle-budget 1200]
-//                    [--resettle-max-steps 0] [--hold-open-contacts] [--seed 1] [--csv pile_scaling.csv]
+//                    [--resettle-max-steps 0] [--release-open-contacts] [--seed 1] [--csv pile_scaling.csv]
 //
 // Per size N (bodies): make_pile_scene(bodies = N, seed, other PileOptions at their
 // defaults: polygons of 3-8 vertices, circumradius 0.05-0.15 m, 1000 kg/m², μ = 0.5,
@@ -25,11 +25,9 @@
 // in the first steps, every body at rest to 1e-14 m/s after 40). The LCP model is run
 // only up to --lcp-max-bodies bodies (row with steps = 0 and a note above), and every
 // window stops once its timed steps used --budget s (budget_hit = 1).
-// The convex settle releases open contacts (SimulatorSettings::convex_release_open_contacts,
-// the default: no body left held above its supports, so the pile is nearly at rest under
-// the LCP model too); --hold-open-contacts settles with them held (the default before
-// 2026-12-05, so the results files of earlier runs were settled so). The windows keep their
-// models' defaults.
+// --release-open-contacts: the convex settle runs with SimulatorSettings::
+// convex_release_open_contacts (no body left held above its supports: a pile that is then
+// nearly at rest under the LCP model too); the windows keep their models' defaults.
 // inaccurate_islands: islands whose answer is not the model's exact solution (the lcp model's
 // perturbed or regularized LCP, models/contact_step.hpp), summed over the window's steps.
 // speedup_vs_1 = (s/step with 1 thread) / (s/step with this many threads), same run, same
@@ -114,7 +112,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> models{"lcp", "convex"};
   std::vector<int> threads{1, 2};
   int steps = 10, warmup = 2, lcp_max_bodies = 100, settle_max_steps = 150, resettle_max_steps = 0;
-  bool hold_open_contacts = false;
+  bool release_open_contacts = false;
   double budget = 60, settle_speed = 0.05, settle_budget = 1200;
   std::uint64_t seed = 1;
   std::string csv = "pile_scaling.csv";
@@ -134,8 +132,8 @@ int main(int argc, char** argv) {
                  "LCP model: most steps of a second settle with the LCP model before its window (0: none)")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
-  app.add_flag("--hold-open-contacts", hold_open_contacts,
-               "Convex settle: hold open contacts (SimulatorSettings::convex_release_open_contacts = false)");
+  app.add_flag("--release-open-contacts", release_open_contacts,
+               "Convex settle: release open contacts (SimulatorSettings::convex_release_open_contacts)");
   app.add_option("--settle-speed", settle_speed, "Settled when every body point is slower (m/s)")->capture_default_str();
   app.add_option("--settle-budget", settle_budget, "Wall-time budget of one settle (s)")->capture_default_str();
   app.add_option("--seed", seed, "Pile seed")->capture_default_str();
@@ -158,7 +156,7 @@ int main(int argc, char** argv) {
     p.seed = seed;
     p.model = ContactModel::convex;
     SimulatorSettings settle_settings;
-    settle_settings.convex_release_open_contacts = !hold_open_contacts;
+    settle_settings.convex_release_open_contacts = release_open_contacts;
     SettleResult s = settle_pile(make_pile_scene(p), settle_settings, 100, settle_max_steps, settle_speed,
                                  settle_budget);
     const Row sr = settle_row("settle", n, "convex", s, settle_budget);

@@ -47,9 +47,6 @@ TEST_F(CliPilePhysics, InvalidValuesAreBadInputNamingTheFlag) {
       {"--lemke-tol -1e-9", "--lemke-tol: must be a finite number >= 0"},
       {"--post-stabilization-passes 0", "--post-stabilization-passes: must be >= 1, got 0"},
       {"--model lcp --release-open-contacts", "--release-open-contacts: applies to the convex model only"},
-      {"--model lcp --hold-open-contacts", "--hold-open-contacts: applies to the convex model only"},
-      {"--model convex --hold-open-contacts --release-open-contacts",
-       "--hold-open-contacts: cannot be combined with --release-open-contacts"},
   };
   for (const auto& [flag, message] : cases) {
     CliRun r = run_cli("pile --bodies 3 --steps 2 " + flag);
@@ -102,18 +99,14 @@ TEST_F(CliPilePhysics, QpToleranceReachesTheConvexModel) {
   EXPECT_EQ(residual(" --qp-eps 1e-8"), residual(""));  // the default, given explicitly
 }
 
-// The release is the convex model's default: --hold-open-contacts changes the run,
-// --release-open-contacts (the default, given explicitly) does not.
-TEST_F(CliPilePhysics, HoldOpenContactsReachesTheConvexModel) {
+TEST_F(CliPilePhysics, ReleaseOpenContactsReachesTheConvexModel) {
   const auto run = [](const std::string& extra) {
     const CliRun r = run_cli("pile --bodies 20 --steps 60 --model convex --json" + extra);
     EXPECT_EQ(r.exit_code, 0) << extra << ": " << r.err;
     const Json j = Json::parse(r.out);
     return std::make_pair(j["max_residual"].get<double>(), j["max_energy_gain"].get<double>());
   };
-  const auto by_default = run("");
-  EXPECT_NE(run(" --hold-open-contacts"), by_default);
-  EXPECT_EQ(run(" --release-open-contacts"), by_default);
+  EXPECT_NE(run(" --release-open-contacts"), run(""));
 }
 
 TEST_F(CliPilePhysics, ProjectionPassesReachTheSimulator) {

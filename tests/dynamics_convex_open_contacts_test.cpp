@@ -75,8 +75,8 @@ TEST(ConvexOpenContacts, ActiveSetNewtonRestsEveryBodyOnASupport) {
   EXPECT_EQ(pile.failed_islands, 0);
 }
 
-TEST(ConvexOpenContacts, ReleaseIsTheDefault) {
-  EXPECT_TRUE(SimulatorSettings().convex_release_open_contacts);
+TEST(ConvexOpenContacts, DefaultIsOff) {
+  EXPECT_FALSE(SimulatorSettings().convex_release_open_contacts);
 }
 
 TEST(ConvexOpenContacts, JustTouchingContactsAreNotReleased) {

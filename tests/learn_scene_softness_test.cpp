@@ -259,6 +259,33 @@ TEST(SceneSoftness, GradientAtTheRigidStartIsTheLimitOfSoftOnes) {
   }
 }
 
+// The same limit for the convex loss with open contacts released
+// (ConvexStepLossSettings::release_open_contacts). Phase 1's v_ref = max(e·|φ|/Δt, 0) is 0
+// at e = 0 on an overlapping contact; its one-sided derivative into e ≥ 0 must be kept
+// (normal_softening.hpp phase1_softening_terms). Measured before that: ∂ℓ/∂e −0.099 at
+// e = 0 against −0.4328 at every e from 1e-10 to 1e-5 (the released set is the same).
+TEST(SceneSoftness, ConvexGradientWithReleaseAtTheRigidStartIsTheLimitOfSoftOnes) {
+  const SceneDataset data = soft_pile();
+  const SceneParameterMap map(data.scene.world, learn("mu,softness"));
+  const ParameterSet rigid = map.parameters(data.scene.world);
+  const Index c = map.size() - 2, e = map.size() - 1;
+  ParameterSet soft = rigid;
+  Vector v = soft.values();
+  v(c) = 1e-7 * map.length_scale(c), v(e) = 1e-7;
+  soft.set_values(v);
+  SceneLossSettings settings = test::fd_loss_settings(LossMethod::convex);
+  settings.convex.release_open_contacts = true;
+  SceneObjective objective(data, map, settings);
+  const std::vector<Index> samples = test::samples_by_gradient(objective, rigid, {c, e}, 4);
+  ASSERT_FALSE(samples.empty()) << "no step with a gradient in both at the rigid start";
+  objective.prepare(rigid, 1);
+  const SampleResult g0 = objective.evaluate(samples[0], rigid, 0);
+  objective.prepare(soft, 1);
+  const SampleResult g1 = objective.evaluate(samples[0], soft, 0);
+  ASSERT_TRUE(g0.ok && g1.ok);
+  for (Index k : {c, e}) EXPECT_NEAR(g0.gradient(k), g1.gradient(k), 1e-3 * std::abs(g1.gradient(k))) << rigid[k].name;
+}
+
 TEST(SceneSoftness, ConvexModelTakesComplianceAndPushOut) {
   // The unit box 2 mm into the ground, frictionless (one row per contact, no phase-2 friction),
   // at rest: phase 2's stationarity where λn > 0 and the hard rows are inactive reads

@@ -70,12 +70,6 @@ ContactSystem boxes(int count, double mu, const std::vector<Vec3>& v) {
 // 1e-5 bound on 29 entries (up to 3e-4 relative: the forward's tolerance, not the backward);
 // at eps_abs = 1e-12 every smooth entry is within 5.5e-7 and 2 Jt kinks lie just outside
 // the one-sided bracket.
-// The largest island of a pile dropped `steps` steps by the convex model with open contacts
-// held (convex_release_open_contacts = false): bodies rest within the margin on loaded open
-// contacts, which the loss's release (on by default) then acts on. Dropped with the release
-// instead (20 bodies, seed 3, 150 steps), phase 2's bound eᵀλn ≤ κ is inactive at the
-// model's own velocity, so DeviationInPhaseTwoOnly finds no island where phase 1's penalty
-// biases the loss (2.4e-12).
 ContactSystem pile_island(int bodies, std::uint64_t seed, int steps) {
   PileOptions o;
   o.bodies = bodies;
@@ -84,7 +78,6 @@ ContactSystem pile_island(int bodies, std::uint64_t seed, int steps) {
   SimulatorSettings settings;
   settings.model = ContactModel::convex;
   settings.post_stabilization_passes = 1;
-  settings.convex_release_open_contacts = false;
   Simulator sim = make_simulator(make_pile_scene(o), settings);
   for (int k = 0; k < steps; ++k) sim.step();
   return largest_island(sim.world(), sim.settings());
@@ -255,15 +248,12 @@ TEST(StepLossConvex, ZeroDeviationForwardIsTheConvexModel) {
     }
 }
 
-// With open contacts held (release_open_contacts = false, Anitescu's relaxation as posed);
-// the default, with the release, is checked below at a tighter forward tolerance.
 TEST(StepLossConvex, HandMadeIslandsFiniteDifferences) {
   for (const NamedIsland& is : hand_made()) {
     ASSERT_GT(is.s.num_friction(), 0) << is.name;
     for (double w : {1.0, 0.0})
       for (ConvexFormulation form : {ConvexFormulation::dual, ConvexFormulation::lifted}) {
-        ConvexStepLossSettings settings = tight(form, w);
-        settings.release_open_contacts = false;
+        const ConvexStepLossSettings settings = tight(form, w);
         const Vector target = target_near_solution(is.s, settings);
         const std::string label =
             is.name + (form == ConvexFormulation::dual ? " dual" : " lifted") + " w=" + std::to_string(int(w));
@@ -312,20 +302,14 @@ TEST(StepLossConvex, HandMadeIslandsWithReleaseFiniteDifferences) {
 // The dual cotangent comes from a forward solved to eps 1e-12: from one at 1e-10, μ's
 // entry 37 (3.9e-8 against a difference of −9.0e-9, max 0.02) missed the bound by 20%,
 // the forward's tolerance, not the backward's (at 1e-12 every dual entry is within 1.4e-6).
-// Open contacts held here (release_open_contacts = false); with the release (the default,
-// lifted form: ReleasedOpenContactsForwardAndFiniteDifferences) the dual cotangent's Jt[120]
-// is off by 2.7e-6·max (at eps 1e-12 and 1e-13 alike), above this test's 2e-6 bound.
 TEST(StepLossConvex, PileIslandFiniteDifferences) {
   const ContactSystem s = pile_island(20, 3, 150);
   std::printf("pile island: %d bodies, %d contacts, %d friction rows\n", static_cast<int>(s.bodies.size()),
               static_cast<int>(s.num_contacts()), static_cast<int>(s.num_friction()));
   ASSERT_GE(s.num_contacts(), 60);
-  ConvexStepLossSettings lifted = tight(ConvexFormulation::lifted, 1.0, 1e-10);
-  lifted.release_open_contacts = false;
-  ConvexStepLossSettings dual_settings = tight(ConvexFormulation::dual, 1.0, 1e-12);
-  dual_settings.release_open_contacts = false;
+  const ConvexStepLossSettings lifted = tight(ConvexFormulation::lifted, 1.0, 1e-10);
   const Vector target = target_near_solution(s, lifted);
-  const StepLossResult dual = convex_step_loss(s, target, kDt, dual_settings);
+  const StepLossResult dual = convex_step_loss(s, target, kDt, tight(ConvexFormulation::dual, 1.0, 1e-12));
   ASSERT_TRUE(has_solution(dual.status)) << dual.message;
   const int kinks_lifted = check_gradient(s, target, lifted, "pile lifted", 40, 0.2);
   const int kinks_dual = check_gradient(s, target, lifted, "pile dual (lifted fd)", 40, 0.2, &dual.grad);
@@ -347,8 +331,7 @@ TEST(StepLossConvex, ReleasedOpenContactsForwardAndFiniteDifferences) {
   const StepLossResult r = convex_step_loss(s, target, kDt, model);
   const ContactSolution released =
       solve_convex_model(s, kDt, model.qp, model.rho, ConvexFormulation::lifted, {}, nullptr, true);
-  const ContactSolution plain =
-      solve_convex_model(s, kDt, model.qp, model.rho, ConvexFormulation::lifted, {}, nullptr, false);
+  const ContactSolution plain = solve_convex_model(s, kDt, model.qp, model.rho, ConvexFormulation::lifted);
   ASSERT_TRUE(has_solution(r.status) && has_solution(released.status) && has_solution(plain.status)) << r.message;
   EXPECT_LE((r.v_next - released.v_next).lpNorm<Eigen::Infinity>(), 1e-7);
   const double effect = (released.v_next - plain.v_next).lpNorm<Eigen::Infinity>();
@@ -388,36 +371,23 @@ TEST(StepLossConvex, DeviationInPhaseTwoOnly) {
     }
   std::vector<NamedIsland> islands = hand_made();
   islands.push_back({"pile", pile_island(20, 3, 150)});
-  // With open contacts released (the default), phase 2's bound eᵀλn ≤ κ is inactive on these
-  // islands at the model's own velocity, so phase 1's penalty leaves ℓ at 1e-25–2e-12 too
-  // (measured); the bias is asserted with open contacts held (pile: 1.5e-5).
   double biased = 0.0;
-  for (const bool release : {true, false})
-    for (const NamedIsland& is : islands) {
-      ConvexStepLossSettings settings = tight(ConvexFormulation::lifted, 1.0, 1e-10);
-      settings.phase1_regularization = 0.0;
-      settings.release_open_contacts = release;
-      const ContactSolution m =
-          solve_convex_model(is.s, kDt, settings.qp, settings.rho, ConvexFormulation::lifted, {}, nullptr, release);
-      ASSERT_TRUE(has_solution(m.status)) << is.name << ": " << m.message;
-      settings.phase1_deviation = false;
-      const StepLossResult own = convex_step_loss(is.s, m.v_next, kDt, settings);
-      settings.phase1_deviation = true;
-      const StepLossResult both = convex_step_loss(is.s, m.v_next, kDt, settings);
-      ASSERT_TRUE(has_solution(own.status) && has_solution(both.status)) << is.name;
-      std::printf("%-12s %-8s loss at the model's own next velocity: deviation in phase 2 only %.3e, in both phases "
-                  "%.3e\n",
-                  is.name.c_str(), release ? "released" : "held", own.loss, both.loss);
-      EXPECT_LE(own.loss, 1e-12) << is.name;
-      if (!release) biased = std::max(biased, both.loss);
-    }
-  EXPECT_GT(biased, 1e-6) << "with open contacts held, the penalty in phase 1 should move kappa on some island";
-}
-
-// The loss poses the simulator's convex model: both release open contacts by default.
-TEST(StepLossConvex, ReleaseIsTheDefaultAsInTheSimulator) {
-  EXPECT_TRUE(ConvexStepLossSettings().release_open_contacts);
-  EXPECT_EQ(ConvexStepLossSettings().release_open_contacts, SimulatorSettings().convex_release_open_contacts);
+  for (const NamedIsland& is : islands) {
+    ConvexStepLossSettings settings = tight(ConvexFormulation::lifted, 1.0, 1e-10);
+    settings.phase1_regularization = 0.0;
+    const ContactSolution m = solve_convex_model(is.s, kDt, settings.qp, settings.rho, ConvexFormulation::lifted);
+    ASSERT_TRUE(has_solution(m.status)) << is.name << ": " << m.message;
+    settings.phase1_deviation = false;
+    const StepLossResult own = convex_step_loss(is.s, m.v_next, kDt, settings);
+    settings.phase1_deviation = true;
+    const StepLossResult both = convex_step_loss(is.s, m.v_next, kDt, settings);
+    ASSERT_TRUE(has_solution(own.status) && has_solution(both.status)) << is.name;
+    std::printf("%-12s loss at the model's own next velocity: deviation in phase 2 only %.3e, in both phases %.3e\n",
+                is.name.c_str(), own.loss, both.loss);
+    EXPECT_LE(own.loss, 1e-12) << is.name;
+    biased = std::max(biased, both.loss);
+  }
+  EXPECT_GT(biased, 1e-6) << "the penalty in phase 1 should move kappa on some island";
 }
 
 TEST(StepLossConvex, BadInputThrows) {

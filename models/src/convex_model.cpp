@@ -50,7 +50,7 @@ const QpResult& timed_solve(QpSolver& qp, ConvexSolverCache& cache) {
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening) {
-  return solve_convex_model(s, dt, settings, rho, formulation, softening, nullptr, true);
+  return solve_convex_model(s, dt, settings, rho, formulation, softening, nullptr, false);
 }
 
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,

@@ -104,11 +104,11 @@ def test_settings_overrides_and_dict():
     assert d["model"] == "convex" and d["dt"] == 0.005 and d["threads"] == 1
     assert d["warm_start"] is False and d["convex_rho"] == 1e-4
     assert d["qp"]["eps_abs"] == 1e-10 and d["lemke"]["max_pivots"] == 100
-    assert d["convex_release_open_contacts"] is True  # the default
+    assert d["convex_release_open_contacts"] is False
     s.step()
     assert s.time == pytest.approx(0.005)
-    r = lcprelax.Simulator(box_text(), model="convex", convex_release_open_contacts=False)
-    assert r.settings["convex_release_open_contacts"] is False
+    r = lcprelax.Simulator(box_text(), model="convex", convex_release_open_contacts=True)
+    assert r.settings["convex_release_open_contacts"] is True
 
 
 def test_pile_scene_is_deterministic_and_runs():

@@ -90,9 +90,8 @@ struct ConvexStepLossSettings {
   /// Phase 2 puts no normal impulse on an open contact (φ > 0) that phase 1's answer leaves
   /// open (SimulatorSettings::convex_release_open_contacts, models/convex_phase_qp.hpp). Which
   /// contacts are released is decided from the forward solve and held fixed in the gradient
-  /// (a bound λn_i ≤ 0 of phase 2, constant in the data), like an active set. On by
-  /// default, as in the simulator.
-  bool release_open_contacts = true;
+  /// (a bound λn_i ≤ 0 of phase 2, constant in the data), like an active set.
+  bool release_open_contacts = false;
 
   /// Empty when valid, else a message naming the first bad field ("rho: must be ...").
   std::string validation_error() const;

@@ -243,7 +243,6 @@ constexpr Index kLiftedMinContacts = 24;
 /// `softening` chooses phase 2's normal softening (validated: InputError when invalid).
 /// The convex model has no LCP: InputError when s.lcp_block is enabled (world.hpp). A
 /// contact's normal compliance and erp enter through add_pair_softness (normal_softening.hpp).
-/// Open contacts are released (the overload below with release_open_contacts = true).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings,
                                    double rho = 1e-3, ConvexFormulation formulation = ConvexFormulation::automatic,
                                    const NormalSofteningSettings& softening = {});
@@ -259,7 +258,7 @@ struct ConvexSolverCache;  // convex_solver_cache.hpp
 /// no solution with the release, it is solved without it (ContactSolution::open_contacts_held).
 ContactSolution solve_convex_model(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                    ConvexFormulation formulation, const NormalSofteningSettings& softening,
-                                   ConvexSolverCache* cache, bool release_open_contacts = true);
+                                   ConvexSolverCache* cache, bool release_open_contacts = false);
 
 /// How the convex model's phase QPs are solved: by the interior point (QpSolver), or by the
 /// warm-started primal–dual active-set (semismooth Newton) method of active_set_qp.hpp,
@@ -279,7 +278,7 @@ enum class ConvexSolver { interior_point, active_set_newton };
 ContactSolution solve_convex_model_newton(const ContactSystem& s, double dt, const QpSettings& settings, double rho,
                                           ConvexFormulation formulation, const NormalSofteningSettings& softening,
                                           ConvexSolverCache* cache, const std::vector<signed char>& warm = {},
-                                          int max_iterations = -1, bool release_open_contacts = true);
+                                          int max_iterations = -1, bool release_open_contacts = false);
 
 /// Default cap of active-set iterations (KKT factorizations) per phase of
 /// solve_convex_model_newton; beyond it the island falls back to the interior point.
