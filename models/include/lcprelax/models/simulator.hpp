@@ -113,7 +113,7 @@ struct SimulatorSettings {
   /// (docs/formulations.md). Off by default: the released set is a discrete decision that
   /// makes the convex learning loss (learn/step_loss_convex.hpp, which has the same option)
   /// rough in the parameters (a 30-body recovery from 25% off stalls at a relative error of
-  /// 3.3 with it, converges to 2.6e-5 without; docs/formulations.md).
+  /// 3.3 with it, reaches 0.67% without; docs/formulations.md).
   bool convex_release_open_contacts = false;
   SimulatorSettings();
 
