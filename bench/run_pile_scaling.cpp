@@ -4,7 +4,8 @@
 //   run_pile_scaling [--sizes 10,20,...] [--steps 10] [--warmup 2] [--models lcp,convex,convex-fresh,convex-newton]
 //                    [--threads 1,2] [--lcp-max-bodies 100] [--budget 60]
 //                    [--settle-max-steps 150] [--settle-speed 0.05] [--settle-budget 1200]
-//                    [--resettle-max-steps 0] [--release-open-contacts] [--seed 1] [--csv pile_scaling.csv]
+//                    [--resettle-max-steps 0] [--release-open-contacts] [--lu-pivot-tolerance U]
+//                    [--seed 1] [--csv pile_scaling.csv]
 //
 // Per size N (bodies): make_pile_scene(bodies = N, seed, other PileOptions at their
 // defaults: polygons of 3-8 vertices, circumradius 0.05-0.15 m, 1000 kg/m², μ = 0.5,
@@ -28,6 +29,8 @@
 // --release-open-contacts: the convex settle runs with SimulatorSettings::
 // convex_release_open_contacts (no body left held above its supports: a pile that is then
 // nearly at rest under the LCP model too); the windows keep their models' defaults.
+// --lu-pivot-tolerance U: the windows' LemkeSettings::lu_pivot_tolerance (KLU's partial-
+// pivoting threshold of the lcp model's sparse Lemke basis; default that setting's).
 // inaccurate_islands: islands whose answer is not the model's exact solution (the lcp model's
 // perturbed or regularized LCP, models/contact_step.hpp), summed over the window's steps.
 // speedup_vs_1 = (s/step with 1 thread) / (s/step with this many threads), same run, same
@@ -136,6 +139,11 @@ int main(int argc, char** argv) {
                "Convex settle: release open contacts (SimulatorSettings::convex_release_open_contacts)");
   app.add_option("--settle-speed", settle_speed, "Settled when every body point is slower (m/s)")->capture_default_str();
   app.add_option("--settle-budget", settle_budget, "Wall-time budget of one settle (s)")->capture_default_str();
+  double lu_pivot_tolerance = LemkeSettings{}.lu_pivot_tolerance;
+  app.add_option("--lu-pivot-tolerance", lu_pivot_tolerance,
+                 "Windows: LemkeSettings::lu_pivot_tolerance of the lcp model's sparse basis")
+      ->check(CLI::Range(1e-12, 1.0))
+      ->capture_default_str();
   app.add_option("--seed", seed, "Pile seed")->capture_default_str();
   app.add_option("--csv", csv, "CSV output file")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -200,6 +208,7 @@ int main(int argc, char** argv) {
         SimulatorSettings settings;
         settings.threads = t;
         settings.reuse_convex_solvers = !fresh;
+        settings.lemke.lu_pivot_tolerance = lu_pivot_tolerance;
         if (newton) settings.convex_solver = ConvexSolver::active_set_newton;
         r.w = time_window(scene, settings, warmup, steps, budget);
         if (t == 1) t1 = r.w.seconds_per_step;

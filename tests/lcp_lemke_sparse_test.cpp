@@ -2,6 +2,7 @@
 // status, solution and pivot count on random P-matrix and monotone LCPs; backward pass
 // against central differences; warm start; small refactorization intervals; and a
 // 20,000-unknown problem that only the sparse path can hold (a dense B⁻¹ would be 3.2 GB).
+#include <lcprelax/core/errors.hpp>
 #include <lcprelax/lcp/lemke.hpp>
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace lcprelax {
@@ -254,6 +256,33 @@ TEST(LemkeSparse, SmallRefactorIntervalGivesTheSameAnswer) {
         EXPECT_GT(r.info.refactorizations, reference.info.refactorizations + r.info.pivots / (2 * interval + 2));
       }
     }
+  }
+}
+
+// LemkeSettings::lu_pivot_tolerance (KLU's partial-pivoting threshold of the sparse basis)
+// changes how the basis is factorized, not the LCP: on P-matrix LCPs (unique solution)
+// KLU's default 0.001 and the range's ends give the same solution and pivot sequence, with
+// the refactorizations of refactor_interval 2. Values outside (0, 1] are refused.
+TEST(LemkeSparse, LuPivotToleranceKeepsTheAnswer) {
+  std::mt19937 rng(78);
+  const Index n = 120;
+  const SparseMatrix M = random_p_matrix(rng, n, 1);
+  const Vector q = random_vector(rng, n);
+  const LcpResult reference = solve(M, q, with(LemkeMethod::dense));
+  for (double u : {1.0, 0.001, 1e-6}) {
+    SCOPED_TRACE("lu_pivot_tolerance " + std::to_string(u));
+    LemkeSettings s = with(LemkeMethod::sparse, 2);
+    s.lu_pivot_tolerance = u;
+    const LcpResult r = solve(M, q, s);
+    expect_lcp_solution(M, q, r);
+    EXPECT_EQ(r.z_basic, reference.z_basic);
+    EXPECT_EQ(r.info.pivots, reference.info.pivots);
+  }
+  for (double bad : {0.0, -1.0, 1.5, std::nan("")}) {
+    LemkeSettings s;
+    s.lu_pivot_tolerance = bad;
+    EXPECT_FALSE(s.validation_error().empty()) << bad;
+    EXPECT_THROW(LemkeSolver{s}, InputError) << bad;
   }
 }
 

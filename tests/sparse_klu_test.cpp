@@ -1,5 +1,6 @@
 // KluLu specifics: refactorize() with the kept pivot order, numerically and structurally
-// singular unsymmetric matrices, the reciprocal condition estimate, and moves. The
+// singular unsymmetric matrices, the reciprocal condition estimate, the partial-pivoting
+// threshold, and moves. The
 // Factorization contract (solve and transposed solve residuals on unsymmetric matrices
 // with a weak diagonal, many right-hand sides, refactorization, failure statuses,
 // lifecycle, empty matrix) is checked in sparse_factorization_test.cpp.
@@ -9,8 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -120,6 +123,51 @@ TEST(KluLu, MovedFromStaysSafe) {
   EXPECT_EQ(g.numeric_factorizations(), 1);
   EXPECT_EQ(f.rows(), 0);  // NOLINT(bugprone-use-after-move): moved-from stays safe
   EXPECT_EQ(f.analyze(E).status, FactorStatus::not_analyzed);
+}
+
+// The partial-pivoting threshold reaches KLU: on a matrix whose diagonal is small but
+// above 0.001 of its column (ε = 0.01 against off-diagonal entries of 1), KLU's default
+// threshold keeps the diagonal pivots and L gets entries of about 1/ε; with u = 1 (true
+// partial pivoting) every |L_ij| ≤ 1. Both solve the system; out-of-range thresholds throw.
+TEST(KluLu, PivotToleranceBoundsTheMultipliers) {
+  const int n = 40;
+  std::vector<Triplet> t;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> val(0.5, 1.0);
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 0.01);
+    t.emplace_back((i + 1) % n, i, val(gen));
+    t.emplace_back((i + 7) % n, i, -val(gen));
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  const DenseMatrix b = random_rhs(n, 1, 3);
+  auto largest_multiplier = [&](double u) {
+    KluLu lu;
+    if (u > 0) lu.set_pivot_tolerance(u);
+    EXPECT_TRUE(lu.analyze(A).ok());
+    EXPECT_TRUE(lu.factorize(A).ok());
+    DenseMatrix x = b;
+    EXPECT_TRUE(lu.solve(x).ok());
+    EXPECT_LT(relative_residual(DenseMatrix(A), x, b), 1e-12) << "u = " << u;
+    KluLu::Factors f;
+    EXPECT_TRUE(lu.extract(f));
+    double largest = 0.0;
+    for (int j = 0; j < f.n; ++j)
+      for (int k = f.Lp[j]; k < f.Lp[j + 1]; ++k)
+        if (f.Li[k] != j) largest = std::max(largest, std::abs(f.Lx[k]));
+    return largest;
+  };
+  EXPECT_EQ(KluLu().pivot_tolerance(), 0.001);  // KLU's own default until set
+  EXPECT_GT(largest_multiplier(-1.0), 10.0);
+  EXPECT_LE(largest_multiplier(1.0), 1.0 + 1e-12);
+  KluLu lu;
+  EXPECT_THROW(lu.set_pivot_tolerance(0.0), std::invalid_argument);
+  EXPECT_THROW(lu.set_pivot_tolerance(1.5), std::invalid_argument);
+  EXPECT_THROW(lu.set_pivot_tolerance(std::nan("")), std::invalid_argument);
+  lu.set_pivot_tolerance(0.25);
+  EXPECT_EQ(lu.pivot_tolerance(), 0.25);
 }
 
 }  // namespace

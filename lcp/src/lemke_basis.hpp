@@ -85,8 +85,11 @@ std::unique_ptr<LemkeBasis> make_dense_lemke_basis(const LemkeColumns& columns, 
 /// sparse_columns: entering columns by hypersparse solves (LemkeSettings::sparse_columns).
 /// shared: the factorization to factorize in (its symbolic analysis reused while the
 /// pattern repeats; lemke.hpp LemkeSharedFactorization), or nullptr for one of its own.
+/// lu_pivot_tolerance: KLU's partial-pivoting threshold (LemkeSettings::lu_pivot_tolerance),
+/// set before every factorization (a shared factorization may have served other settings).
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
                                                     bool sparse_columns = true,
-                                                    LemkeSharedFactorization* shared = nullptr);
+                                                    LemkeSharedFactorization* shared = nullptr,
+                                                    double lu_pivot_tolerance = 1.0);
 
 }  // namespace lcprelax::detail

@@ -41,8 +41,9 @@ using SchurBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 class SparseLemkeBasis final : public LemkeBasis {
  public:
   SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval, bool sparse_columns,
-                   LemkeSharedFactorization* shared)
+                   LemkeSharedFactorization* shared, double lu_pivot_tolerance)
       : cols_(columns),
+        lu_pivot_tolerance_(lu_pivot_tolerance),
         sparse_columns_(sparse_columns),
         max_updates_(std::min(refactor_interval, kCap)),
         shared_(shared),
@@ -95,6 +96,7 @@ class SparseLemkeBasis final : public LemkeBasis {
       if (shared_) ++shared_->analyses;
     }
     if (shared_) ++shared_->factorizations;
+    klu_.set_pivot_tolerance(lu_pivot_tolerance_);
     if (!klu_.factorize(B0_).ok()) return false;
     rows_.reserve(klu_);  // storage for rows_ (built at the first tie) allocated with KLU's
     columns_.reserve(klu_);  // and for columns_ (built at the next solve_column)
@@ -274,6 +276,7 @@ class SparseLemkeBasis final : public LemkeBasis {
   }
 
   LemkeColumns cols_;
+  double lu_pivot_tolerance_;  // KLU's partial-pivoting threshold (LemkeSettings)
   bool sparse_columns_;     // LemkeSettings::sparse_columns
   static constexpr double kHypersparseDensity = 0.1;  // solve_column's switch
   double column_density_ = 0.0;  // running mean of nnz(B₀⁻¹c)/n over the solved columns
@@ -307,8 +310,9 @@ class SparseLemkeBasis final : public LemkeBasis {
 }  // namespace
 
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
-                                                    bool sparse_columns, LemkeSharedFactorization* shared) {
-  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns, shared);
+                                                    bool sparse_columns, LemkeSharedFactorization* shared,
+                                                    double lu_pivot_tolerance) {
+  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns, shared, lu_pivot_tolerance);
 }
 
 }  // namespace lcprelax::detail

@@ -17,6 +17,8 @@ std::string LemkeSettings::validation_error() const {
   else if (dense_max_n < 0) os << "dense_max_n = " << dense_max_n << " must be >= 0";
   else if (crash_flip_rounds < 0) os << "crash_flip_rounds = " << crash_flip_rounds << " must be >= 0";
   else if (refactor_interval < 1) os << "refactor_interval = " << refactor_interval << " must be >= 1";
+  else if (!(lu_pivot_tolerance > 0 && lu_pivot_tolerance <= 1))
+    os << "lu_pivot_tolerance = " << lu_pivot_tolerance << " must be in (0, 1]";
   else
     for (Index i = 0; i < covering.size(); ++i)
       if (!(covering(i) > 0) || !std::isfinite(covering(i))) {

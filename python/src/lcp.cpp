@@ -26,6 +26,7 @@ const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
       double_field("pivot_tolerance", &S::pivot_tolerance),
       double_field("residual_tolerance", &S::residual_tolerance),
       int_field("refactor_interval", &S::refactor_interval),
+      double_field("lu_pivot_tolerance", &S::lu_pivot_tolerance),
       bool_field("sparse_tie_rows", &S::sparse_tie_rows),
       bool_field("sparse_columns", &S::sparse_columns),
       int_field("covering_retries", &S::covering_retries),

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "matrix_checks.hpp"
@@ -126,6 +127,14 @@ FactorResult KluLu::analyze(const SparseMatrix& A) {
   m.analysed = true;
   return {};
 }
+
+void KluLu::set_pivot_tolerance(double u) {
+  if (!(u > 0.0 && u <= 1.0))
+    throw std::invalid_argument("KluLu: pivot tolerance " + std::to_string(u) + " must be in (0, 1]");
+  if (impl_) impl_->common.tol = u;
+}
+
+double KluLu::pivot_tolerance() const { return impl_ ? impl_->common.tol : 0.0; }
 
 bool KluLu::analyzed_for(const SparseMatrix& A) const {
   return impl_ && impl_->analysed && A.isCompressed() && impl_->pattern.matches(A);

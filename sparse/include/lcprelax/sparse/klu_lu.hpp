@@ -33,6 +33,14 @@ class KluLu final : public Factorization {
   const char* name() const override { return "klu_lu"; }
   /// Cheap reciprocal condition estimate of the last factorization (klu_rcond).
   double rcond() const;
+  /// Threshold u of the partial pivoting in factorize() (KLU's Common.tol): a pivot is
+  /// taken from the preferred (diagonal) position when its magnitude is at least u times
+  /// the largest in its column, so that every |L_ij| ≤ 1/u. KLU's default 0.001 favours
+  /// sparsity and allows a growth of up to 1000 per elimination step; 1 is true partial
+  /// pivoting (|L_ij| ≤ 1). Applies to the next factorize(); throws std::invalid_argument
+  /// unless 0 < u ≤ 1.
+  void set_pivot_tolerance(double u);
+  double pivot_tolerance() const;
   /// The columns of A (analyze() first, same pattern) that a factorization which goes on
   /// past zero pivots (KLU's halt_if_singular off) leaves with a pivot |U_kk| ≤
   /// relative_tolerance·max|U_kk|: each depends on the columns before it in KLU's column
