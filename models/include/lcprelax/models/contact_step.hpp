@@ -114,9 +114,15 @@ constexpr int kLcpPerturbationSeeds = 3;
 /// 6,800–8,300 unknowns) the successful paths take 0.41–0.51 per unknown while the cold
 /// path takes 1.4–1.7, so a cap of 1/2 stopped half of them just short of their end and
 /// paid for both (`run_pile_scaling --sizes 100,200,500 --models lcp --steps 6`: pivots per
-/// step at 500 bodies 18,154 with 1/2, 12,322 with 1; 100 and 200 bodies unchanged). A
-/// path that fails at the cap costs at most about one cold solve more.
-constexpr double kLcpWarmCrashPivotsPerUnknown = 1.0;
+/// step at 500 bodies 18,154 with 1/2, 12,322 with 1; 100 and 200 bodies unchanged). With
+/// the basis factorized by true partial pivoting (LemkeSettings::lu_pivot_tolerance = 1)
+/// longer crash paths end solved, e.g. one of 1.57 per unknown where the cap of 1 sent the
+/// step to a cold path of 1.8 more: `run_pile_scaling --sizes 500 --models lcp --steps 8
+/// --warmup 1 --seed S`, pivots per step for seeds 1, 2, 3 with a cap of 1: 9,909, 10,894,
+/// 12,278; 2: 8,394, 8,334, 12,758; 3: 8,394, 8,334, 8,614; at 200 bodies (seed 1, 10 steps)
+/// 7,580 with 1 and 2,372 with 2 and 3; 100 bodies unchanged. A path that fails at the cap
+/// costs at most about three cold solves more.
+constexpr double kLcpWarmCrashPivotsPerUnknown = 3.0;
 /// Pivot cap per LCP unknown of the cold attempts (steps 2, 3 and 4 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
