@@ -2,7 +2,7 @@
 // (and optionally the static geometry) of a multi-body scene from its transitions.
 //
 //   lcprelax learn scene [--scene FILE.json | --bodies N [--data-model lcp|convex]] [--data TRAJ.csv] [--steps K]
-//       [--classes C] [--method hard|relaxed|convex] [--softening exp|impedance|penalty]
+//       [--classes C] [--method hard|relaxed|convex] [--softening exp|impedance|penalty] [--release-open-contacts]
 //       [--learn mu,mass,inertia,vertices,ground,gap,residual,block|block_tied,softness]
 //       [--epochs E] [--rel-loss-tol R] [--grad-tol G] [--patience P] [--batch B] [--threads T]
 //       [--seed S] [--noise σ] [--perturb F | --init-from RESULT.json] [--optimizer sgd|adam|lbfgs|lm] [--lr α] [--lr-decay d]
@@ -28,6 +28,11 @@
 // --softening (convex only): the normal softening of the convex loss and of the generated
 // data (models/normal_softening.hpp); default the scene's ("softening" in the scene JSON,
 // exp_phi for the learning pile). With --data the data are the file's, whatever it says.
+// --release-open-contacts (convex only): the convex model with open contacts released
+// (SimulatorSettings::convex_release_open_contacts) generates the data and is the loss's
+// (ConvexStepLossSettings::release_open_contacts); off by default, as in the simulator
+// (docs/formulations.md says why: the release is a discrete decision that makes the loss
+// rough for learning).
 // Output: JSON (method, true, initial, learned, relative_error maps of the learned
 // parameters, final_loss, epochs, stop_reason, converged, seconds, transitions, islands,
 // contacts, failed_islands, failed; with --portfolio also portfolio, chosen_recipe:
@@ -65,6 +70,7 @@ struct LearnSceneOptions {
   int classes = 3;
   std::string method = "relaxed";
   std::string softening;  // empty: the scene's
+  bool release_open_contacts = false;
   std::string data_model;  // generated learning pile: empty = the method's model
   std::string learn = "mu,mass,inertia,vertices";
   int epochs = 300;
@@ -146,6 +152,8 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   ls.convex.phase1_deviation = o.phase1_deviation;
   require_option(o.softening.empty() || ls.method == learn::LossMethod::convex, "--softening",
                  "applies to --method convex only");
+  require_option(!o.release_open_contacts || ls.method == learn::LossMethod::convex, "--release-open-contacts",
+                 "applies to --method convex only");
   learn::SceneParameterSettings ps;
   ps.learn = learn::parse_scene_learn_flags(o.learn);
   require_option(!(ps.learn.block || ps.learn.block_tied) || ls.method == learn::LossMethod::hard, "--learn",
@@ -186,9 +194,11 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   t.optimizer.lm_geodesic_acceleration = o.lm_geodesic;
   apply_learn_checkpoint_options(app, o.checkpoint, t);
 
-  // --softening overrides the scene's for the generated data and the loss.
+  // --softening overrides the scene's for the generated data and the loss; so does
+  // --release-open-contacts.
   const auto apply_softening = [&o](Scene& scene) {
     if (!o.softening.empty()) scene.settings.convex_softening.method = parse_normal_softening(o.softening);
+    if (o.release_open_contacts) scene.settings.convex_release_open_contacts = true;
   };
   learn::SceneDataset data;
   if (!o.data.empty()) {
@@ -218,6 +228,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
   }
   if (data.transitions.size() < 2) throw InputError("scene data: fewer than 2 transitions with contact");
   ls.convex.softening.method = data.scene.settings.convex_softening.method;
+  ls.convex.release_open_contacts = data.scene.settings.convex_release_open_contacts;
 
   const learn::SceneParameterMap map(data.scene.world, ps);
   const learn::ParameterSet truth = map.parameters(data.scene.world);
@@ -253,7 +264,10 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
 
   Json j;
   j["method"] = learn::to_string(ls.method);
-  if (ls.method == learn::LossMethod::convex) j["softening"] = to_string(ls.convex.softening.method);
+  if (ls.method == learn::LossMethod::convex) {
+    j["softening"] = to_string(ls.convex.softening.method);
+    j["release_open_contacts"] = ls.convex.release_open_contacts;
+  }
   j["true"] = values(truth);
   j["initial"] = values(initial);
   j["learned"] = values(theta);
@@ -352,6 +366,9 @@ Command add_learn_scene_command(CLI::App& learn) {
                   "convex: how contacts are softened in the loss and the generated data: exp, impedance (MuJoCo's) "
                   "or penalty (a spring); default: the scene's")
       ->check(CLI::IsMember({"exp", "impedance", "penalty"}));
+  app->add_flag("--release-open-contacts", o->release_open_contacts,
+                "convex: release the contacts that stay open under phase 1 (the simulator's "
+                "convex_release_open_contacts) in the generated data and the loss; default: held");
   app->add_option("--learn", o->learn, "what is learned, a comma-separated list of mu, mass, inertia, vertices, ground (the static "
                   "shapes), gap (a contact distance offset per shape), residual (a linear velocity correction "
                   "per shape), block (a 4x4 correction of every contact's block of the exact model's LCP and of its "

@@ -4,7 +4,8 @@
 //   final_loss, epochs, stop_reason, seconds, transitions, failed_islands); the CSV log has a
 //   header and one row per epoch; --learn selects the kinds (mu alone: one learned name);
 // - --scene FILE.json generates the data from the file's scene;
-// - --softening (convex) names its method in the JSON and changes the loss;
+// - --softening (convex) names its method in the JSON and changes the loss; so does
+//   --release-open-contacts;
 // - bad input exits 2 with a message on stderr naming the option, file line or field, and
 //   only the invalid_input object on stdout: an unknown --learn kind, an unknown method, --data without --scene,
 //   a trajectory whose frames have another number of bodies than the scene, a NaN in the
@@ -211,6 +212,24 @@ TEST(CliLearnSceneOptions, SofteningReachesTheConvexLoss) {
   EXPECT_NE(loss[0], loss[2]);
   expect_bad_input("learn scene --scene '" + kStack + "' --method relaxed --softening exp --json", "--softening");
   expect_bad_input("learn scene --scene '" + kStack + "' --method convex --softening soft --json", "--softening");
+}
+
+// --release-open-contacts sets the convex loss's release and the generated data's: the JSON
+// says so, and the loss at the same initial values differs from the held model's (a pile
+// whose open contacts are released moves differently, and so does the loss's model).
+TEST(CliLearnSceneOptions, ReleaseOfOpenContactsReachesTheConvexLoss) {
+  std::vector<double> loss;
+  for (const bool release : {false, true}) {
+    const CliRun r = run_cli(std::string("learn scene --bodies 10 --steps 30 --learn mu --method convex --epochs 0 ") +
+                             (release ? "--release-open-contacts " : "") + "--json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["release_open_contacts"], release);
+    loss.push_back(j["final_loss"].get<double>());
+  }
+  EXPECT_NE(loss[0], loss[1]);
+  expect_bad_input("learn scene --bodies 10 --steps 30 --method relaxed --release-open-contacts --json",
+                   "--release-open-contacts");
 }
 
 // --mass-normalized and --complementarity-weight reach the relaxed loss (on the box stack,

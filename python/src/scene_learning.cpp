@@ -44,7 +44,7 @@ class PySceneObjective : public PyObjective {
  public:
   PySceneObjective(const py::object& scene_source, const std::string& method, const py::object& learn,
                    bool mu_per_pair, bool relaxed_warm_center, int threads, const learn::SceneDatasetSettings& ds,
-                   const py::object& qp) {
+                   const py::object& qp, bool release_open_contacts) {
     learn::SceneLossSettings ls;
     ls.method = learn::parse_loss_method(method);
     ls.relaxed_warm_center = relaxed_warm_center;
@@ -55,7 +55,11 @@ class PySceneObjective : public PyObjective {
     ps.learn = parse_learn_kinds(learn);
     ps.mu_per_pair = mu_per_pair;
     if (std::string e = ds.validation_error(); !e.empty()) throw InputError("SceneObjective: " + e);
+    if (release_open_contacts && ls.method != learn::LossMethod::convex)
+      throw InputError("SceneObjective: release_open_contacts applies to method='convex' only");
     Scene scene = scene_from_python(scene_source);
+    // The data's convex model and the loss's release the open contacts alike (as softening).
+    if (release_open_contacts) scene.settings.convex_release_open_contacts = true;
     auto owned = std::make_shared<SceneData>();
     {
       py::gil_scoped_release nogil;
@@ -64,6 +68,7 @@ class PySceneObjective : public PyObjective {
     if (owned->data.transitions.empty())
       throw InputError("SceneObjective: the simulation gave no transition with contact (more steps?)");
     ls.convex.softening.method = owned->data.scene.settings.convex_softening.method;
+    ls.convex.release_open_contacts = owned->data.scene.settings.convex_release_open_contacts;
     owned->map = std::make_unique<learn::SceneParameterMap>(owned->data.scene.world, ps);
     learn::ParameterSet truth = owned->map->parameters(owned->data.scene.world);
     const std::vector<Index> learned = learned_indices(truth);
@@ -110,7 +115,7 @@ void bind_scene_learning(py::module_& m) {
       .def(py::init([](const py::object& scene, const std::string& method, const py::object& learn, bool mu_per_pair,
                        bool relaxed_warm_center, int steps, long long seed, double push_fraction, int push_interval, double push_force_min,
                        double push_force_max, double push_torque_max, double pose_noise, double velocity_noise,
-                       bool drop_without_contact, int threads, const py::object& qp) {
+                       bool drop_without_contact, int threads, const py::object& qp, bool release_open_contacts) {
              if (seed < 0) throw InputError("seed: must be >= 0");
              learn::SceneDatasetSettings ds;
              ds.steps = steps, ds.seed = static_cast<std::uint64_t>(seed);
@@ -120,18 +125,20 @@ void bind_scene_learning(py::module_& m) {
              ds.drop_without_contact = drop_without_contact;
              ds.threads = threads;
              return std::make_unique<PySceneObjective>(scene, method, learn, mu_per_pair, relaxed_warm_center, threads, ds,
-                                                       qp);
+                                                       qp, release_open_contacts);
            }),
            py::arg("scene"), py::kw_only(), py::arg("method") = "relaxed", py::arg("learn") = "mu",
            py::arg("mu_per_pair") = false, py::arg("relaxed_warm_center") = true, py::arg("steps") = 100, py::arg("seed") = 1,
            py::arg("push_fraction") = 0.25, py::arg("push_interval") = 1, py::arg("push_force_min") = 20.0,
            py::arg("push_force_max") = 80.0, py::arg("push_torque_max") = 0.5, py::arg("pose_noise") = 0.0,
            py::arg("velocity_noise") = 0.0, py::arg("drop_without_contact") = true, py::arg("threads") = 0,
-           py::arg("qp") = py::none(),
+           py::arg("qp") = py::none(), py::arg("release_open_contacts") = false,
            "SceneObjective(scene, *, method='relaxed', learn='mu', steps=100, seed=1, ...): scene is a\n"
            "scene JSON path or text; its Simulator generates `steps` transitions with random pushes\n"
            "(push_* in N and N*m; learn/scene_dataset.hpp) and noise (m, rad; m/s, rad/s). qp: a dict\n"
-           "of QpSettings for the relaxed and convex losses' QPs (gradients are as accurate as them).")
+           "of QpSettings for the relaxed and convex losses' QPs (gradients are as accurate as them).\n"
+           "release_open_contacts (method='convex' only): the convex model with the contacts that phase 1\n"
+           "leaves open released, in the generated data and the loss (off: held, the default).")
       .def_property_readonly("true_values", &PySceneObjective::true_values, "theta of the scene (the data's truth)")
       .def("perturbed_values", &PySceneObjective::perturbed_values, py::arg("fraction"), py::arg("seed") = 1,
            "the truth perturbed deterministically (log parameters by (1 +- fraction), ...)")

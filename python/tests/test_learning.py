@@ -168,6 +168,19 @@ def test_scene_loss_is_smallest_at_the_truth(stack):
     assert o.evaluate(step)[0] < off
 
 
+def test_scene_release_of_open_contacts_reaches_the_convex_loss():
+    # A falling pile has contacts that stay open under phase 1: with them released, the data
+    # and the loss's model differ from the held ones, so does the loss at the same theta.
+    pile = lcprelax.pile_scene(bodies=10, seed=1, model="convex")
+    losses = []
+    for release in (False, True):
+        o = lcprelax.SceneObjective(pile, method="convex", learn="mu", steps=30, release_open_contacts=release)
+        losses.append(o.evaluate(o.perturbed_values(0.1))[0])
+    assert losses[0] != losses[1]
+    with pytest.raises(lcprelax.InputError, match="release_open_contacts"):
+        lcprelax.SceneObjective(pile, method="relaxed", steps=5, release_open_contacts=True)
+
+
 def test_scene_bad_input(stack):
     with pytest.raises(lcprelax.InputError, match="learn"):
         lcprelax.SceneObjective(stack, learn="mu,colour", steps=5)
