@@ -8,6 +8,8 @@
 // a factorization (a dense transposed solve if they cannot be extracted), and each
 // entering column's B₀⁻¹c from a hypersparse solve with the same factors
 // (sparse/hypersparse_column_solve.hpp; a dense solve if they cannot be extracted).
+// KLU pivots with the threshold LemkeSettings::lu_pivot_tolerance (1: true partial pivoting,
+// the default; KLU's own 0.001 lost accuracy on degenerate pile bases, lcp_types.hpp).
 // B₀ is factorized in the basis' own KLU object or in a shared one (lemke.hpp
 // LemkeSharedFactorization); either way KLU's symbolic analysis is skipped when B₀ has the
 // pattern analysed last (the orderings depend on the pattern only: same factors).
