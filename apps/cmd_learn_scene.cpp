@@ -196,14 +196,14 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
 
   // --softening overrides the scene's for the generated data and the loss; so does
   // --release-open-contacts.
-  const auto apply_softening = [&o](Scene& scene) {
+  const auto apply_convex_options = [&o](Scene& scene) {
     if (!o.softening.empty()) scene.settings.convex_softening.method = parse_normal_softening(o.softening);
     if (o.release_open_contacts) scene.settings.convex_release_open_contacts = true;
   };
   learn::SceneDataset data;
   if (!o.data.empty()) {
     data = learn::load_scene_dataset(o.scene, o.data, true);
-    apply_softening(data.scene);
+    apply_convex_options(data.scene);
   } else {
     Scene scene;
     if (!o.scene.empty()) {
@@ -218,7 +218,7 @@ int run_learn_scene(const LearnSceneOptions& o, const CLI::App& app) {
                                                             : ContactModel::lcp;
       scene = learn::make_learning_pile(pile);
     }
-    apply_softening(scene);
+    apply_convex_options(scene);
     learn::SceneDatasetSettings ds;
     ds.steps = o.steps;
     ds.seed = o.seed;

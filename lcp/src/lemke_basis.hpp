@@ -88,8 +88,7 @@ std::unique_ptr<LemkeBasis> make_dense_lemke_basis(const LemkeColumns& columns, 
 /// lu_pivot_tolerance: KLU's partial-pivoting threshold (LemkeSettings::lu_pivot_tolerance),
 /// set before every factorization (a shared factorization may have served other settings).
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
-                                                    bool sparse_columns = true,
-                                                    LemkeSharedFactorization* shared = nullptr,
-                                                    double lu_pivot_tolerance = 1.0);
+                                                    bool sparse_columns, LemkeSharedFactorization* shared,
+                                                    double lu_pivot_tolerance);
 
 }  // namespace lcprelax::detail

@@ -121,7 +121,7 @@ constexpr int kLcpPerturbationSeeds = 3;
 /// --warmup 1 --seed S`, pivots per step for seeds 1, 2, 3 with a cap of 1: 9,909, 10,894,
 /// 12,278; 2: 8,394, 8,334, 12,758; 3: 8,394, 8,334, 8,614; at 200 bodies (seed 1, 10 steps)
 /// 7,580 with 1 and 2,372 with 2 and 3; 100 bodies unchanged. A path that fails at the cap
-/// costs at most about three cold solves more.
+/// costs about two cold solves (1.4–1.7 pivots per unknown each) more.
 constexpr double kLcpWarmCrashPivotsPerUnknown = 3.0;
 /// Pivot cap per LCP unknown of the cold attempts (steps 2, 3 and 4 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
