@@ -279,6 +279,9 @@ const LcpResult& LemkeSolver::result() const { return impl_->result; }
 
 void LemkeSolver::set_refactorization_hook(void (*hook)(bool starting)) { impl_->refactor_hook = hook; }
 
-void LemkeSolver::set_pivot_trace(std::vector<Index>* trace) { impl_->pivot_trace = trace; }
+void LemkeSolver::set_pivot_trace(std::vector<Index>* trace, long max_pivots) {
+  impl_->pivot_trace = trace;
+  impl_->pivot_trace_limit = max_pivots;
+}
 
 }  // namespace lcprelax

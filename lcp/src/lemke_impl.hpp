@@ -38,6 +38,13 @@ struct LemkeSolver::Impl {
   std::shared_ptr<LemkeSharedFactorization> shared_lu;  // share_factorization(); nullptr: none
   void (*refactor_hook)(bool) = nullptr;
   std::vector<Index>* pivot_trace = nullptr;  // set_pivot_trace
+  long pivot_trace_limit = -1;                // its pivots recorded at most (< 0: all)
+  void trace_pivot(Index entering, Index leaving) {
+    if (!pivot_trace) return;
+    if (pivot_trace_limit >= 0 && static_cast<long>(pivot_trace->size()) >= 2 * pivot_trace_limit) return;
+    pivot_trace->push_back(entering);
+    pivot_trace->push_back(leaving);
+  }
 
   // Which basis the factorization holds: factored_basic, valid while factor_current
   // (cleared by a column replacement and by any change of M or d).

@@ -104,10 +104,7 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
     for (Index i = 0; i < n; ++i)
       if (i != r && a(i) != 0.0) xB(i) -= a(i) * xB(r);
     const Index leaving = basic[r];
-    if (pivot_trace) {
-      pivot_trace->push_back(entering);
-      pivot_trace->push_back(leaving);
-    }
+    trace_pivot(entering, leaving);
     basic[r] = entering;
     result.info.pivots = pivot + 1;
     if (leaving == z0()) return extract_solution();
@@ -156,10 +153,7 @@ bool LemkeSolver::Impl::drop_vanished_z0(Index entering) {
   }
   basis->replace(k0, a);
   factor_current = false;
-  if (pivot_trace) {
-    pivot_trace->push_back(var);
-    pivot_trace->push_back(z0());
-  }
+  trace_pivot(var, z0());
   basic[k0] = var;
   ++result.info.pivots;
   extract_solution();

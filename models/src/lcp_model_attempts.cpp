@@ -7,6 +7,32 @@
 
 namespace lcprelax {
 
+Index reset_warm_contacts_on_ray(const ContactSystem& s, const std::vector<Index>& trace,
+                                 std::vector<signed char>& level, std::vector<bool>& warm) {
+  const Index nc = s.num_contacts(), nf = s.num_friction(), n = nc + 3 * nf;
+  if (static_cast<Index>(level.size()) != nc || static_cast<Index>(warm.size()) != n)
+    throw InputError("reset_warm_contacts_on_ray: level needs nc and warm nc + 3nf entries");
+  // The contact of LCP row i (z = [λn (nc), β⁺, β⁻, γ (nf each)]).
+  auto contact_of = [&](Index i) { return i < nc ? i : static_cast<Index>(s.friction_rows[(i - nc) % nf]); };
+  std::vector<char> touched(static_cast<std::size_t>(nc), 0);
+  auto mark = [&](Index var) {
+    if (var >= 0 && var < 2 * n) touched[static_cast<std::size_t>(contact_of(var % n))] = 1;
+  };
+  for (Index v : trace) mark(v);
+  if (!trace.empty() && trace.back() < 2 * n) mark(trace.back() < n ? trace.back() + n : trace.back() - n);
+  Index raised = 0;
+  for (Index c = 0; c < nc; ++c)
+    if (touched[static_cast<std::size_t>(c)] && level[static_cast<std::size_t>(c)] < 2) {
+      ++level[static_cast<std::size_t>(c)];
+      ++raised;
+      if (level[static_cast<std::size_t>(c)] == 2) warm[static_cast<std::size_t>(c)] = false;
+    }
+  for (Index f = 0; f < nf; ++f)
+    if (level[static_cast<std::size_t>(s.friction_rows[static_cast<std::size_t>(f)])] > 0)
+      for (Index k = 0; k < 3; ++k) warm[static_cast<std::size_t>(nc + k * nf + f)] = false;
+  return raised;
+}
+
 double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
   if (z.size() == 0) return 0.0;
   const Vector w = lcp.M * z + lcp.q;
@@ -58,19 +84,22 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   // r and inexact point into out.solvers (a deque never relocates its elements).
   const LemkeSolver* r = nullptr;
   // `lu`: the factorization to factorize in (step 1's warm_factorization), or none.
+  // `trace`: the first trace_pivots pivots are recorded there (step 1b's restarts).
   auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
-                        const std::vector<bool>* basis,
-                        const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr) -> const LemkeSolver& {
+                        const std::vector<bool>* basis, const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr,
+                        std::vector<Index>* trace = nullptr, long trace_pivots = -1) -> const LemkeSolver& {
     LemkeSolver& solver = out.solvers.emplace_back(ls);
     if (lu) solver.share_factorization(lu);
+    if (trace) solver.set_pivot_trace(trace, trace_pivots);
     solver.setup(M, q);
     if (basis) solver.warm_start(*basis);
     out.pivots += solver.solve().info.pivots;
     return solver;
   };
   auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis,
-                     const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr) -> const LemkeSolver& {
-    return attempt_on(lcp.M, ls, q, basis, lu);
+                     const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr, std::vector<Index>* trace = nullptr,
+                     long trace_pivots = -1) -> const LemkeSolver& {
+    return attempt_on(lcp.M, ls, q, basis, lu, trace, trace_pivots);
   };
   auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
   auto perturbed = [&](double delta, int seed) { return Vector(lcp.q + delta * pattern(seed)); };
@@ -103,11 +132,27 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     warm_crash.crash_start = true;
     warm_crash.crash_cold_fallback = false;  // step 2 is the cold start
     warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
-    const LemkeSolver& rc = attempt(warm_crash, perturbed(delta, 0), &warm);
-    if (solved(&rc) && accept_perturbed)
-      inexact = &rc;  // kept as it is: steps 2 and 3 are skipped below
-    else if (solved(&rc))
-      polish_on_q(rc, 0);
+    // An early ray: the contacts its pivots touched are taken back in the warm basis and the
+    // path runs again (kLcpWarmRayRestarts; reset_warm_contacts_on_ray).
+    const long ray_pivots = static_cast<long>(kLcpWarmRayPivotsPerUnknown * static_cast<double>(n));
+    std::vector<Index> trace;
+    trace.reserve(static_cast<std::size_t>(2 * ray_pivots + 2));
+    std::vector<bool> start = warm;
+    std::vector<signed char> level;
+    const LemkeSolver* rc = &attempt(warm_crash, perturbed(delta, 0), &start, nullptr, &trace, ray_pivots);
+    for (int k = 0; k < kLcpWarmRayRestarts; ++k) {
+      const LcpInfo& info = rc->result().info;
+      if (info.status != LcpStatus::ray_termination || info.pivots > ray_pivots) break;
+      if (level.empty()) level.assign(static_cast<std::size_t>(nc), 0);
+      if (reset_warm_contacts_on_ray(s, trace, level, start) == 0) break;
+      if (std::find(start.begin(), start.end(), true) == start.end()) break;  // all-w: step 2's cold start
+      trace.clear();
+      rc = &attempt(warm_crash, perturbed(delta, 0), &start, nullptr, &trace, ray_pivots);
+    }
+    if (solved(rc) && accept_perturbed)
+      inexact = rc;  // kept as it is: steps 2 and 3 are skipped below
+    else if (solved(rc))
+      polish_on_q(*rc, 0);
   }
   // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
   LemkeSettings cold = plain;

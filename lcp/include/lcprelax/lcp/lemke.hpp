@@ -111,10 +111,12 @@ class LemkeSolver {
   /// basis from scratch (allocation-counting tests exclude KLU's factorizations with it);
   /// nullptr (the default) for none.
   void set_refactorization_hook(void (*hook)(bool starting));
-  /// Instrumentation: when not null, every pivot appends its entering and its leaving
-  /// variable (numbering of lemke_basis.hpp: w_i = i, z_j = n + j, z₀ = 2n) to *trace
-  /// (allocates); nullptr (the default) for none.
-  void set_pivot_trace(std::vector<Index>* trace);
+  /// When not null, every pivot appends its entering and its leaving variable (numbering
+  /// of lemke_basis.hpp: w_i = i, z_j = n + j, z₀ = 2n) to *trace, the first `max_pivots`
+  /// pivots only when max_pivots ≥ 0 (no allocation when the caller reserved 2·max_pivots
+  /// entries; the lcp model reads the start of a failed crash path so); nullptr (the
+  /// default) for none. The trace is appended to, never cleared, by solve().
+  void set_pivot_trace(std::vector<Index>* trace, long max_pivots = -1);
   /// Factorize this solver's bases (sparse method only; the dense one ignores it) in
   /// `shared` from the next setup() on; nullptr: a factorization of its own (the default).
   /// The solver keeps `shared` alive, and it must not be used by another solver until this

@@ -25,7 +25,9 @@
 //      start) where its basic solution on q is feasible (no pivots);
 //   1b. a crash path (LemkeSettings::crash_start) from the warm basis on the perturbed q of
 //      step 2 (first pattern), at most kLcpWarmCrashPivotsPerUnknown pivots per unknown,
-//      then the polish of step 2; if the crash path fails, step 2 runs as without a warm
+//      then the polish of step 2; when the path ends on a ray within its first pivots, the
+//      contacts it touched are taken back in the warm basis and it runs again
+//      (kLcpWarmRayRestarts); if the crash path fails, step 2 runs as without a warm
 //      basis; if only the polish fails, the crash path's solution is kept as the inexact
 //      fallback and step 2 is skipped (its first pattern is the same perturbed LCP: the cold
 //      path would end at the same basis and fail the same polish; on a 500-body pile this
@@ -123,6 +125,24 @@ constexpr int kLcpPerturbationSeeds = 3;
 /// 7,580 with 1 and 2,372 with 2 and 3; 100 bodies unchanged. A path that fails at the cap
 /// costs about two cold solves (1.4–1.7 pivots per unknown each) more.
 constexpr double kLcpWarmCrashPivotsPerUnknown = 3.0;
+/// Step 1b's restarts after an early ray: when the crash path from the warm basis ends on
+/// a ray within kLcpWarmRayPivotsPerUnknown pivots per unknown, the contacts that its pivots
+/// touched (and the contact of the variable that found no ratio) are taken back in the
+/// warm basis, the friction rows first and the whole contact when it is touched again
+/// (reset_warm_contacts_on_ray), and the crash path runs again from it, at most
+/// kLcpWarmRayRestarts times (each from scratch: a factorization and the pivots up to the
+/// next ray). Such rays come within 1–70 pivots on a dropping 500-body pile (islands of
+/// 7,700–9,600 unknowns) on 4–6 of 20 steps and are no roundoff (every perturbation
+/// pattern ends on the same ray), while the warm basis differs from the step's solution in
+/// only 500–800 of its statuses: 2–32 contacts taken back let the path solve instead of
+/// the cold start (1.4–1.7 pivots per unknown). On the same LCPs (every step of 20-step
+/// windows of seeds 1, 2 and 3, 14 steps for 3, each LCP solved with and without the
+/// restarts) the pivots went from 177,604 to 151,577, 247,794 to 244,357 and 618,652 to
+/// 607,437, the time down by 1.15×, 1.00× and 1.02×; perturbed answers 4, 11 and 6 steps
+/// against 4, 10 and 6 (bench/results/lemke_warm_ray_restarts.txt). A modest gain: most
+/// of a moving pile's pivots are in crash paths that solve.
+constexpr double kLcpWarmRayPivotsPerUnknown = 0.1;
+constexpr int kLcpWarmRayRestarts = 4;
 /// Pivot cap per LCP unknown of the cold attempts (steps 2, 3 and 4 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).

@@ -56,6 +56,19 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
                             bool accept_perturbed = false);
 
+/// Takes back, in the warm basis `warm` (z_basic of the LCP z = [λn, β⁺, β⁻, γ] of s, size
+/// n = nc + 3nf), the contacts that a crash path ending on a ray touched: every contact
+/// whose rows a pivot of `trace` (LemkeSolver::set_pivot_trace numbering: w_i = i,
+/// z_j = n + j, z₀ = 2n; pairs entering, leaving) exchanged, and the contact of the
+/// variable that was to enter next (the complement of the last one to leave), the one
+/// whose column has no positive entry. `level` (size nc, zeros at first) escalates per
+/// contact: at 1 its friction variables β⁺, β⁻, γ become nonbasic (their w basic: the
+/// contact's friction state unknown), at 2 its λn too (the contact as if new). Returns how
+/// many contacts went up a level (0: nothing left to take back). Throws InputError on
+/// inconsistent sizes.
+Index reset_warm_contacts_on_ray(const ContactSystem& s, const std::vector<Index>& trace,
+                                 std::vector<signed char>& level, std::vector<bool>& warm);
+
 /// max_i |min(z_i, (M z + q)_i)| on the unperturbed LCP, 0 for an empty one.
 double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z);
 
