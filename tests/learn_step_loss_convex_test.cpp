@@ -297,11 +297,9 @@ TEST(StepLossConvex, HandMadeIslandsWithReleaseFiniteDifferences) {
 // derivatives. The dual form's forward stalls there within 1e3·eps (solved_inaccurate,
 // ℓ accurate to ~1e-9, too noisy for differences with h = 1e-6), so both cotangents are
 // checked against the differences of the lifted form's ℓ (the same function to the QP
-// tolerance). Measured on this island (bench numbers in the report of the change): relative
-// errors ≤ 1e-5 on entries ≥ 0.2·max of their kind and ≤ 2e-6·max below that (floor 0.2).
-// The dual cotangent comes from a forward solved to eps 1e-12: from one at 1e-10, μ's
-// entry 37 (3.9e-8 against a difference of −9.0e-9, max 0.02) missed the bound by 20%,
-// the forward's tolerance, not the backward's (at 1e-12 every dual entry is within 1.4e-6).
+// tolerance). Lifted form: relative errors ≤ 1e-5 on entries ≥ 0.2·max of their kind and
+// ≤ 2e-6·max below that (floor 0.2). The dual cotangent's accuracy follows its forward's
+// tolerance, not the backward's (below: eps 1e-12, floor 0.5).
 TEST(StepLossConvex, PileIslandFiniteDifferences) {
   const ContactSystem s = pile_island(20, 3, 150);
   std::printf("pile island: %d bodies, %d contacts, %d friction rows\n", static_cast<int>(s.bodies.size()),
