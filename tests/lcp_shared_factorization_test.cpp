@@ -1,10 +1,12 @@
 // LemkeSharedFactorization (lcp/lemke.hpp): solvers that factorize their bases in one shared
-// KLU object reuse its symbolic analysis while the basis pattern repeats, with results equal
-// bit for bit to a solver with a factorization of its own. Sequence: the largest island of a
+// KLU object reuse its symbolic analysis and pivot order while the basis pattern repeats,
+// with results equal bit for bit to a solver with a factorization of its own (the values
+// here move so little that partial pivoting would pick the same pivots). Sequence: the largest island of a
 // 60-body LCP pile dropped for 300 steps (at rest), solved cold; then its LCP with q scaled
 // by 1 + 1e-9·k (k = 1..4, the same pattern, slightly different values: the next steps of a
 // pile at rest) solved from that basis with one shared factorization: one analysis for the
-// warm basis' pattern and none after it, each z equal bit for bit to a fresh solver's. And
+// warm basis' pattern and none after it, pivots reused from the second solve on, each z
+// equal bit for bit to a fresh solver's. And
 // solve_lcp_model, which the simulator calls with each island's shared factorization: on
 // every island of that pile solved by the sparse method, the same impulses and velocities
 // bit for bit with and without one, with one analysis for three solves.
@@ -70,6 +72,7 @@ TEST(LemkeSharedFactorization, ReusesTheAnalysisOfARepeatedBasisWithTheSameResul
     EXPECT_TRUE(same_bits(a.w, b.w)) << "solve " << k;
     EXPECT_EQ(shared->analyses, 1) << "solve " << k;  // the first solve's, reused after it
     EXPECT_EQ(shared->factorizations, k);
+    EXPECT_EQ(shared->reused_pivots, k - 1);  // the first solve's pivots, kept after it
   }
 }
 
@@ -126,6 +129,7 @@ TEST(LemkeSharedFactorization, SolveLcpModelAnswersAreUnchanged) {
     }
     EXPECT_EQ(shared->analyses, 1);
     EXPECT_EQ(shared->factorizations, 3);
+    EXPECT_EQ(shared->reused_pivots, 2);
   }
   EXPECT_GE(checked, 1);
 }

@@ -1,4 +1,5 @@
-// KluLu specifics: refactorize() with the kept pivot order, numerically and structurally
+// KluLu specifics: refactorize() with the kept pivot order, factorize_reusing_pivots()
+// (reuse while the condition estimate holds, a pivoted factorization when not), numerically and structurally
 // singular unsymmetric matrices, the reciprocal condition estimate, the partial-pivoting
 // threshold, and moves. The
 // Factorization contract (solve and transposed solve residuals on unsymmetric matrices
@@ -66,6 +67,50 @@ TEST(KluLu, RefactorizesWithTheKeptPivotOrder) {
   nan.valuePtr()[5] = std::nan("");
   EXPECT_EQ(f.refactorize(nan).status, FactorStatus::invalid_input);
   EXPECT_EQ(f.numeric_factorizations(), 2);
+}
+
+TEST(KluLu, ReusesPivotsWhileTheConditionEstimateHolds) {
+  KluLu f;
+  f.set_pivot_tolerance(1.0);
+  const SparseMatrix A1 = unsymmetric(60, 6);
+  ASSERT_TRUE(f.analyze(A1).ok());
+  // No factorization held yet: a pivoted one.
+  ASSERT_TRUE(f.factorize_reusing_pivots(A1, 0.1).ok());
+  EXPECT_FALSE(f.reused_pivots());
+  // Values scaled: the kept pivots suit them (same rcond), klu_refactor runs.
+  const SparseMatrix A2 = unsymmetric(60, 6, 1.5);
+  ASSERT_TRUE(f.factorize_reusing_pivots(A2, 0.1).ok());
+  EXPECT_TRUE(f.reused_pivots());
+  EXPECT_EQ(f.numeric_factorizations(), 2);
+  const DenseMatrix b = random_rhs(60, 1, 8);
+  DenseMatrix x = b;
+  ASSERT_TRUE(f.solve(x).ok());
+  EXPECT_LT(relative_residual(DenseMatrix(A2), x, b), 1e-11);
+  // [[4, 1], [1, 3]] pivots on 4; in [[1e-9, 1], [1, 3]] that pivot is 1e-9 and the
+  // refactorization's rcond collapses: the pivoted factorization runs instead.
+  auto two_by_two = [](double a00) {
+    SparseMatrix A(2, 2);
+    const std::vector<Triplet> t{{0, 0, a00}, {1, 0, 1.0}, {0, 1, 1.0}, {1, 1, 3.0}};
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+    return A;
+  };
+  KluLu g;
+  g.set_pivot_tolerance(1.0);
+  ASSERT_TRUE(g.analyze(two_by_two(4.0)).ok());
+  ASSERT_TRUE(g.factorize(two_by_two(4.0)).ok());
+  const SparseMatrix tiny = two_by_two(1e-9);
+  ASSERT_TRUE(g.factorize_reusing_pivots(tiny, 0.1).ok());
+  EXPECT_FALSE(g.reused_pivots());
+  EXPECT_EQ(g.numeric_factorizations(), 3);  // the refused refactorization counts too
+  DenseMatrix y = DenseMatrix::Ones(2, 1);
+  ASSERT_TRUE(g.solve(y).ok());
+  EXPECT_LT(relative_residual(DenseMatrix(tiny), y, DenseMatrix::Ones(2, 1)), 1e-14);
+  // A pattern other than the analysed one is refused, as factorize() refuses it.
+  SparseMatrix other = A1;
+  other.coeffRef(0, 59) += 1.0;
+  if (A1.coeff(0, 59) != 0.0) other.coeffRef(1, 59) += 1.0;
+  EXPECT_EQ(f.factorize_reusing_pivots(other, 0.1).status, FactorStatus::pattern_mismatch);
 }
 
 TEST(KluLu, ReportsNumericallyAndStructurallySingularMatrices) {

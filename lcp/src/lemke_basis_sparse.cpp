@@ -92,14 +92,22 @@ class SparseLemkeBasis final : public LemkeBasis {
     }
     outer[n] = static_cast<int>(p);
     B0_.data().resize(p);
-    // A shared factorization (LemkeSharedFactorization) may hold the analysis of this pattern.
-    if (!klu_.analyzed_for(B0_)) {
+    // A shared factorization (LemkeSharedFactorization) may hold the analysis of this
+    // pattern, and then also a numeric factorization of it: of the basis a simulator's
+    // previous time step ended on, when this step starts from that basis. Its pivot order
+    // is reused (klu_refactor) unless the condition estimate falls below
+    // kReusedPivotsRcondRatio times the pivoted factorization's.
+    const bool same_pattern = klu_.analyzed_for(B0_);
+    if (!same_pattern) {
       if (!klu_.analyze(B0_).ok()) return false;
       if (shared_) ++shared_->analyses;
     }
     if (shared_) ++shared_->factorizations;
     klu_.set_pivot_tolerance(lu_pivot_tolerance_);
-    if (!klu_.factorize(B0_).ok()) return false;
+    const sparse::FactorResult factored =
+        same_pattern ? klu_.factorize_reusing_pivots(B0_, kReusedPivotsRcondRatio) : klu_.factorize(B0_);
+    if (!factored.ok()) return false;
+    if (shared_ && klu_.reused_pivots()) ++shared_->reused_pivots;
     rows_.reserve(klu_);  // storage for rows_ (built at the first tie) allocated with KLU's
     columns_.reserve(klu_);  // and for columns_ (built at the next solve_column)
     return true;
@@ -281,6 +289,7 @@ class SparseLemkeBasis final : public LemkeBasis {
   double lu_pivot_tolerance_;  // KLU's partial-pivoting threshold (LemkeSettings)
   bool sparse_columns_;     // LemkeSettings::sparse_columns
   static constexpr double kHypersparseDensity = 0.1;  // solve_column's switch
+  static constexpr double kReusedPivotsRcondRatio = 0.1;  // refactor's klu_refactor test
   double column_density_ = 0.0;  // running mean of nnz(B₀⁻¹c)/n over the solved columns
   int max_updates_;
   LemkeSharedFactorization* shared_;  // or nullptr

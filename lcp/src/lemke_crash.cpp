@@ -26,9 +26,11 @@ bool LemkeSolver::Impl::load_warm_basis() {
   return refactor(xB);
 }
 
+// factorized: load_warm_basis() (directly or as flip_infeasible's last step) has just set
+// x_B from a factorization of the current basis, so extract_solution need not recompute it.
 bool LemkeSolver::Impl::try_warm_start(bool factorized) {
   if (!factorized || xB.minCoeff() < -tol) return false;
-  extract_solution();
+  extract_solution(/*xb_is_current=*/true);
   result.info.warm_started = has_solution(result.info.status);
   return result.info.warm_started;
 }

@@ -106,7 +106,10 @@ struct LemkeSolver::Impl {
   bool purify_match_pairs(std::vector<Index>& position);
 
   // lemke_solution.cpp
-  void extract_solution();
+  /// xb_is_current: x_B was just computed by refactor(xB) for the current basis (a warm
+  /// start), so the fresh factorization and solve that would recompute it are skipped
+  /// (they would give the same numbers).
+  void extract_solution(bool xb_is_current = false);
 };
 
 }  // namespace lcprelax

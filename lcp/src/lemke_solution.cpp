@@ -11,11 +11,11 @@ namespace lcprelax {
 
 // Fills z, w, z_basic from a fresh factorization of the current basis (kept for
 // backward()); checks the residual.
-void LemkeSolver::Impl::extract_solution() {
+void LemkeSolver::Impl::extract_solution(bool xb_is_current) {
   // (res_tol = 0 when q = 0: then z = 0 is exact and the residual is 0.)
   take(result.z, z_spare);
   result.z.setZero();
-  if (!refactor(xB)) return finish(LcpStatus::numerical_error, "final basis is singular");
+  if (!xb_is_current && !refactor(xB)) return finish(LcpStatus::numerical_error, "final basis is singular");
   result.z_basic.assign(static_cast<std::size_t>(n), false);
   for (Index k = 0; k < n; ++k)
     if (basic[k] >= n && basic[k] < 2 * n) {

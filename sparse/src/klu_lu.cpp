@@ -25,6 +25,8 @@ struct KluLu::Impl {
   bool analysed = false;  // KLU rejects n = 0, so an empty matrix has no symbolic object
   bool factored = false;
   double rcond = 0.0;
+  double factor_rcond = 0.0;  // rcond of the last factorize() (the pivots' own values)
+  bool reused = false;        // the last successful factorization was klu_refactor
 
   Impl() {
     klu_defaults(&common);
@@ -159,10 +161,23 @@ FactorResult KluLu::factorize(const SparseMatrix& A) {
     return r;
   }
   m.update_rcond();
+  m.factor_rcond = m.rcond;
+  m.reused = false;
   m.factored = true;
   ++numeric_factorizations_;
   return {};
 }
+
+FactorResult KluLu::factorize_reusing_pivots(const SparseMatrix& A, double min_rcond_ratio) {
+  if (!impl_) return detail::moved_from_result();
+  Impl& m = *impl_;
+  // analyze() frees the Numeric object, so one that exists is of the analysed pattern.
+  if (m.analysed && m.numeric && m.n > 0 && refactorize(A).ok() && m.rcond >= min_rcond_ratio * m.factor_rcond)
+    return {};
+  return factorize(A);
+}
+
+bool KluLu::reused_pivots() const { return impl_ && impl_->factored && impl_->reused; }
 
 std::vector<Index> KluLu::zero_pivot_columns(const SparseMatrix& A, double relative_tolerance) {
   std::vector<Index> out;
@@ -241,6 +256,7 @@ FactorResult KluLu::refactorize(const SparseMatrix& A) {
                                 ptr(M.valuePtr()), m.symbolic, m.numeric, &m.common);
   if (!done || m.common.status != KLU_OK) return m.from_common("klu_refactor");
   m.update_rcond();
+  m.reused = true;
   m.factored = true;
   ++numeric_factorizations_;
   return {};

@@ -71,14 +71,20 @@ namespace lcprelax {
 /// A sparse LU factorization that LemkeSolvers hand on from one solve to the next, one
 /// solver at a time (LemkeSolver::share_factorization): when a basis to factorize has the
 /// pattern of the one factorized before in it, KLU's symbolic analysis (BTF and AMD
-/// orderings, which depend on the pattern only) is reused; the numeric factorization, and
-/// so every result, is the same as without it, bit for bit. For a caller that solves a
-/// sequence of LCPs from the previous basis (a simulated pile at rest: the warm basis and
-/// the pattern of M repeat from step to step).
+/// orderings, which depend on the pattern only) is reused, and so is the pivot order of
+/// the numeric factorization held (klu_refactor, no pivot search), unless the result's
+/// condition estimate falls below 0.1 times that of the factorization that chose the
+/// pivots (then a pivoted factorization runs). For a caller that solves a sequence of LCPs
+/// from the previous basis (a simulated pile at rest: the warm basis and the pattern of M
+/// repeat from step to step, and the values move little): where partial pivoting would
+/// choose the same pivots, the factors and every result are the same as without sharing,
+/// bit for bit (tests/lcp_shared_factorization_test.cpp); where it would choose others,
+/// they differ by roundoff, and the solve's residual check decides as always.
 struct LemkeSharedFactorization {
   sparse::KluLu klu;
   long analyses = 0;        ///< symbolic analyses done in it
   long factorizations = 0;  ///< numeric factorizations (each after an analysis or reusing one)
+  long reused_pivots = 0;   ///< of these, refactorizations with the held pivot order
 };
 std::shared_ptr<LemkeSharedFactorization> make_lemke_shared_factorization();
 

@@ -31,6 +31,15 @@ class KluLu final : public Factorization {
   long factor_nnz() const override;
   Index rows() const override;
   const char* name() const override { return "klu_lu"; }
+  /// Numeric factorization of A (same pattern as analyze()): klu_refactor with the pivot
+  /// order of the last factorize() when one is held and the result's rcond() is at least
+  /// min_rcond_ratio times that factorization's (the values moved little, so the old
+  /// pivots still suit them), else factorize(). A repeated pattern with nearby values — a
+  /// Lemke basis that stays from one time step to the next — then costs a refactorization
+  /// without the pivot search. reused_pivots() says which one ran.
+  FactorResult factorize_reusing_pivots(const SparseMatrix& A, double min_rcond_ratio);
+  /// Whether the last successful numeric factorization was a refactorization.
+  bool reused_pivots() const;
   /// Cheap reciprocal condition estimate of the last factorization (klu_rcond).
   double rcond() const;
   /// Threshold u of the partial pivoting in factorize() (KLU's Common.tol): a pivot is
