@@ -2,7 +2,7 @@
 // the same scenes, in one run: time per step and physical error.
 //
 //   run_pile_peers [--pile-sizes 200,1000] [--settle-steps 300] [--steps 50]
-//                  [--lcp-max-bodies 200] [--lcp-resettle-max-steps 0]
+//                  [--lcp-max-bodies 200] [--lcp-resettle-max-steps 0] [--lcp-scene-dir DIR]
 //                  [--pyramid-base 20] [--pyramid-steps 200]
 //                  [--incline 0.3:0.2,...] [--incline-steps 100] [--engines ...]
 //                  [--skip-pile] [--skip-pyramid] [--skip-incline] [--seed 1] [--csv OUT]
@@ -16,7 +16,10 @@
 //   runs --steps timed steps (with --lcp-resettle-max-steps K > 0, lcprelax_lcp's pile is
 //   settled by the convex model for --settle-steps steps, with convex_release_open_contacts
 //   so that no body is left held above its supports, then by the LCP model until every
-//   body point is slower than 1e-3 m/s, at most K steps; the note says how many): seconds_per_step (wall, the engine's step call only),
+//   body point is slower than 1e-3 m/s, at most K steps; the note says how many; with
+//   --lcp-scene-dir DIR the re-settled pile is saved to DIR/lcp_pile_<bodies>_seed<seed>.json
+//   and read from there by later runs, whose first --lcp-warmup-steps steps, untimed, rebuild
+//   the previous-step bases that a scene file does not hold): seconds_per_step (wall, the engine's step call only),
 //   contacts_mean (lcprelax: contacts entering the problem, within the speculative margin;
 //   Box2D: manifold points of touching contacts), max_penetration (the engine's own
 //   measure: lcprelax the largest −φ at the start of a step, Box2D the largest overlap of
@@ -45,6 +48,7 @@
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/contact/polygon.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
+#include <lcprelax/scenes/scene_json.hpp>
 #include <lcprelax/core/errors.hpp>
 
 #include <CLI/CLI.hpp>
@@ -159,13 +163,22 @@ void write_row(std::ostream& os, const Row& r) {
 constexpr double kRestSpeed = 1e-3;
 
 Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int settle_steps, int steps,
-             int lcp_resettle_max_steps) {
+             int lcp_resettle_max_steps, const std::string& lcp_scene_dir, int lcp_warmup_steps) {
   PileOptions p;
   p.bodies = bodies;
   p.seed = seed;
   std::unique_ptr<Runner> r;
   std::string settled = "settled " + std::to_string(settle_steps) + " steps";
-  if (engine == "lcprelax_lcp" && lcp_resettle_max_steps > 0) {
+  const std::string cached = lcp_scene_dir.empty() ? std::string()
+                                                   : lcp_scene_dir + "/lcp_pile_" + std::to_string(bodies) + "_seed" +
+                                                         std::to_string(seed) + ".json";
+  if (engine == "lcprelax_lcp" && lcp_resettle_max_steps > 0 && !cached.empty() && std::ifstream(cached).good()) {
+    // A pile re-settled by an earlier run (below), stepped lcp_warmup_steps times untimed.
+    std::cerr << engine << ", " << bodies << " bodies: re-settled pile read from " << cached << std::endl;
+    r = make_runner(engine, load_scene(cached));
+    for (int k = 0; k < lcp_warmup_steps; ++k) r->step();
+    settled = "re-settled pile read from " + cached + ", then " + std::to_string(lcp_warmup_steps) + " untimed steps";
+  } else if (engine == "lcprelax_lcp" && lcp_resettle_max_steps > 0) {
     // Dropped and settled by the convex model (no speed test: exactly settle_steps steps),
     // then stepped by the LCP model until at rest: dropping a pile of 1,000 bodies with the
     // LCP model takes hours. The convex model releases open contacts: without it, bodies
@@ -192,6 +205,13 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
     std::snprintf(buf, sizeof buf, " with the convex model (open contacts released; %d failed islands), then %d with the LCP model (speed %.3g m/s)",
                   static_cast<int>(convex.failed_islands), lcp_steps, speed);
     settled += buf;
+    if (!cached.empty()) {
+      Scene resettled = convex.scene;
+      resettled.world = r->world();
+      resettled.settings.model = ContactModel::lcp;
+      save_scene(cached, resettled);
+      std::cerr << "  re-settled pile saved to " << cached << std::endl;
+    }
   } else {
     std::cerr << engine << ", " << bodies << " bodies: " << settle_steps << " settle steps" << std::endl;
     r = make_runner(engine, make_pile_scene(p));
@@ -315,8 +335,9 @@ int main(int argc, char** argv) {
   std::vector<int> pile_sizes{200, 1000};
   std::vector<std::string> engines{"lcprelax_convex", "lcprelax_lcp", "box2d"};
   std::vector<std::string> inclines{"0.3:0.2", "0.3:0.3", "0.3:0.32", "0.3:0.6", "0.5:0.4", "0.5:0.54", "0.5:0.56"};
-  int settle_steps = 300, steps = 50, lcp_max_bodies = 200, lcp_resettle_max_steps = 0, pyramid_base = 20, pyramid_steps = 200,
-      incline_steps = 100;
+  int settle_steps = 300, steps = 50, lcp_max_bodies = 200, lcp_resettle_max_steps = 0, lcp_warmup_steps = 3,
+      pyramid_base = 20, pyramid_steps = 200, incline_steps = 100;
+  std::string lcp_scene_dir;
   bool skip_pile = false, skip_pyramid = false, skip_incline = false;
   std::uint64_t seed = 1;
   std::string csv = "pile_peers.csv";
@@ -329,6 +350,12 @@ int main(int argc, char** argv) {
   app.add_option("--lcp-resettle-max-steps", lcp_resettle_max_steps,
                  "lcprelax_lcp: settle the pile with the convex model, then with the LCP model until every body point "
                  "is slower than 1e-3 m/s, at most this many steps (0: the LCP model drops and settles it)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  app.add_option("--lcp-scene-dir", lcp_scene_dir,
+                 "With --lcp-resettle-max-steps: save the re-settled pile in this directory, or read it from there "
+                 "when an earlier run saved it");
+  app.add_option("--lcp-warmup-steps", lcp_warmup_steps, "Untimed LCP steps after reading a re-settled pile")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_option("--engines", engines, "Engines")
@@ -367,7 +394,7 @@ int main(int argc, char** argv) {
       for (const int n : pile_sizes)
         for (const std::string& e : engines) {
           if (e == "lcprelax_lcp" && n > lcp_max_bodies) continue;
-          write_row(out, run_pile(e, n, seed, settle_steps, steps, lcp_resettle_max_steps));
+          write_row(out, run_pile(e, n, seed, settle_steps, steps, lcp_resettle_max_steps, lcp_scene_dir, lcp_warmup_steps));
         }
     if (!skip_pyramid)
       for (const std::string& e : engines) write_row(out, run_pyramid(e, pyramid_base, pyramid_steps));
