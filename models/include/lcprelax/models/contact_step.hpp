@@ -243,8 +243,10 @@ Vector lcp_perturbation_pattern(const ContactSystem& s, int seed);
 /// Solves the lcp model; `warm` (size nc + 3nf, or empty) is tried as the first basis.
 /// `warm_factorization` (optional): the factorization step 1 factorizes the warm basis in
 /// (LemkeSolver::share_factorization), kept by the caller from one step to the next so that
-/// a repeating basis pattern (an island at rest) reuses its symbolic analysis; the answer
-/// is the same bit for bit. Not to be shared between islands solved at the same time.
+/// a repeating basis pattern (an island at rest) reuses its symbolic analysis and pivot
+/// order; the answer is the same bit for bit where partial pivoting would pick the same
+/// pivots, within roundoff otherwise (lemke.hpp). Not to be shared between islands solved
+/// at the same time.
 /// `accept_perturbed`: step 1b's answer on q + δu is taken without the polish and the later
 /// attempts (run_lcp_model_attempts; kLcpExactRetrySteps says when the simulator asks).
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
