@@ -17,7 +17,8 @@
 //   settled by the convex model for --settle-steps steps, with convex_release_open_contacts
 //   so that no body is left held above its supports, then by the LCP model until every
 //   body point is slower than 1e-3 m/s, at most K steps; the note says how many; with
-//   --lcp-scene-dir DIR the re-settled pile is saved to DIR/lcp_pile_<bodies>_seed<seed>.json
+//   --lcp-scene-dir DIR the re-settled pile is saved to
+//   DIR/lcp_pile_<bodies>_seed<seed>_settle<settle steps>.json
 //   and read from there by later runs, whose first --lcp-warmup-steps steps, untimed, rebuild
 //   the previous-step bases that a scene file does not hold): seconds_per_step (wall, the engine's step call only),
 //   contacts_mean (lcprelax: contacts entering the problem, within the speculative margin;
@@ -171,7 +172,8 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
   std::string settled = "settled " + std::to_string(settle_steps) + " steps";
   const std::string cached = lcp_scene_dir.empty() ? std::string()
                                                    : lcp_scene_dir + "/lcp_pile_" + std::to_string(bodies) + "_seed" +
-                                                         std::to_string(seed) + ".json";
+                                                         std::to_string(seed) + "_settle" + std::to_string(settle_steps) +
+                                                         ".json";
   if (engine == "lcprelax_lcp" && lcp_resettle_max_steps > 0 && !cached.empty() && std::ifstream(cached).good()) {
     // A pile re-settled by an earlier run (below), stepped lcp_warmup_steps times untimed.
     std::cerr << engine << ", " << bodies << " bodies: re-settled pile read from " << cached << std::endl;
