@@ -2,7 +2,8 @@
 // sparse_tie_rows; lcp/src/lemke_lexicographic.hpp, sparse/hypersparse_solve.hpp):
 // - the hypersparse transposed and column solves with KLU's factors agree with KLU's own
 //   dense solves, on matrices where KLU finds BTF blocks (so the off-diagonal block F
-//   takes part) and scales rows, and reach few nodes when the solution is sparse;
+//   takes part) and scales rows, and reach few nodes when the solution is sparse; the dense
+//   solve that skips zero entries repeats klu_solve bit for bit;
 // - Lemke with sparse tie rows takes exactly the pivot sequence of the full-row reference on
 //   degenerate LCPs (granular fc2d, 667 contacts; a redundant-contact LCP), where most
 //   pivots are decided by ties on rows of B⁻¹; so does Lemke with hypersparse entering
@@ -116,6 +117,38 @@ TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
 }
 
 TEST(HypersparseColumnSolve, AgreesWithKluDenseSolve) { check_against_klu<sparse::HypersparseColumnSolver>(false); }
+
+// solve_dense against klu_solve on the same matrices, for right-hand sides with about half
+// of their entries zero (columns of the solution are then skipped): klu_solve's sums in its
+// order, so the results are the same to the last bit; the count of nonzeros is returned.
+TEST(HypersparseColumnSolve, DenseSolveRepeatsKluSolveBitForBit) {
+  std::mt19937 rng(23);
+  std::normal_distribution<double> N(0.0, 1.0);
+  std::uniform_real_distribution<double> coin(0.0, 1.0);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Index n = trial < 2 ? 40 : 400;
+    const SparseMatrix A = permuted_block_triangular(rng, n);
+    sparse::KluLu klu;
+    ASSERT_TRUE(klu.analyze(A).ok());
+    ASSERT_TRUE(klu.factorize(A).ok());
+    sparse::HypersparseColumnSolver h;
+    h.reserve(klu);
+    ASSERT_TRUE(h.build(klu));
+    for (int rhs = 0; rhs < 10; ++rhs) {
+      std::vector<int> b_index;
+      std::vector<double> b_value;
+      for (Index i = 0; i < n; ++i)
+        if (coin(rng) < (rhs < 5 ? 0.02 : 0.5)) b_index.push_back(static_cast<int>(i)), b_value.push_back(N(rng));
+      Vector x = Vector::Zero(n);
+      for (std::size_t k = 0; k < b_index.size(); ++k) x(b_index[k]) = b_value[k];
+      ASSERT_TRUE(klu.solve(x).ok());
+      Vector y = Vector::Constant(n, 7.0);  // overwritten entirely
+      const Index nonzeros = h.solve_dense(static_cast<int>(b_index.size()), b_index.data(), b_value.data(), y);
+      for (Index i = 0; i < n; ++i) ASSERT_EQ(y(i), x(i)) << "n " << n << ", trial " << trial << ", entry " << i;
+      EXPECT_EQ(nonzeros, (x.array() != 0.0).count());
+    }
+  }
+}
 
 struct Traced {
   LcpResult result;

@@ -6,8 +6,9 @@
 // B⁻¹ for the lexicographic tie-breaks come from hypersparse transposed solves with B₀'s
 // factors (sparse/hypersparse_solve.hpp), copied row-wise from KLU at the first tie after
 // a factorization (a dense transposed solve if they cannot be extracted), and each
-// entering column's B₀⁻¹c from a hypersparse solve with the same factors
-// (sparse/hypersparse_column_solve.hpp; a dense solve if they cannot be extracted).
+// entering column's B₀⁻¹c from a hypersparse solve with the same factors, or from a dense
+// solve with them that skips zero entries once the solved columns are denser than 10%
+// (sparse/hypersparse_column_solve.hpp; KLU's dense solve if they cannot be extracted).
 // KLU pivots with the threshold LemkeSettings::lu_pivot_tolerance (1: true partial pivoting,
 // the default; KLU's own 0.001 lost accuracy on degenerate pile bases, lcp_types.hpp).
 // B₀ is factorized in the basis' own KLU object or in a shared one (lemke.hpp
@@ -121,17 +122,18 @@ class SparseLemkeBasis final : public LemkeBasis {
   // running mean of the solved columns' densities with the switch at 10%, as simplex codes
   // switch between hypersparse and dense solves (Hall & McKinnon 2005, "Hyper-sparsity in
   // the revised simplex method and how to exploit it", Comput. Optim. Appl. 32).
+  // Above the switch, the dense solve skips the factors' columns of zero solution entries
+  // (HypersparseColumnSolver::solve_dense: ~40% of the entries are nonzero on piles of
+  // hundreds of bodies, where klu_solve's scatter of every column was most of a pivot).
   void solve_column(Index var, Vector& a) override {
-    const bool hyper = !identity_ && sparse_columns_ && column_density_ < kHypersparseDensity &&
-                       (columns_.built() || columns_.build(klu_));
-    if (!hyper) {
+    const bool factors = !identity_ && sparse_columns_ && (columns_.built() || columns_.build(klu_));
+    if (!factors) {
       cols_.dense(var, pending_);
       b0_solve(pending_);
-      if (!identity_ && sparse_columns_) {
-        Index nonzeros = 0;
-        for (Index i = 0; i < cols_.n; ++i) nonzeros += pending_(i) != 0.0;
-        column_density_ = 0.9 * column_density_ + 0.1 * static_cast<double>(nonzeros) / static_cast<double>(cols_.n);
-      }
+    } else if (column_density_ >= kHypersparseDensity) {
+      const Index c = cols_.write_column(var, col_index_.data(), col_value_.data());
+      const Index nonzeros = columns_.solve_dense(static_cast<int>(c), col_index_.data(), col_value_.data(), pending_);
+      column_density_ = 0.9 * column_density_ + 0.1 * static_cast<double>(nonzeros) / static_cast<double>(cols_.n);
     } else {
       const Index c = cols_.write_column(var, col_index_.data(), col_value_.data());
       columns_.solve(static_cast<int>(c), col_index_.data(), col_value_.data(), x_index_, x_value_);

@@ -11,7 +11,8 @@ void HypersparseColumnSolver::reserve(const KluLu& klu) {
   const std::size_t n = static_cast<std::size_t>(klu.rows()), two_n = 2 * n;
   for (auto* v : {&f_.Lp, &f_.Up, &f_.Fp}) v->reserve(n + 1);
   for (auto* v : {&f_.P, &f_.Q, &pinv_}) v->reserve(n);
-  for (auto* v : {&f_.Rs, &udiag_}) v->reserve(n);
+  f_.R.reserve(n + 1);
+  for (auto* v : {&f_.Rs, &udiag_, &dense_}) v->reserve(n);
   f_.Li.reserve(static_cast<std::size_t>(lnz));
   f_.Lx.reserve(static_cast<std::size_t>(lnz));
   f_.Ui.reserve(static_cast<std::size_t>(unz));
@@ -33,6 +34,7 @@ bool HypersparseColumnSolver::build(const KluLu& klu) {
   pinv_.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) pinv_[static_cast<std::size_t>(f_.P[static_cast<std::size_t>(k)])] = k;
   work_.reset(2 * static_cast<std::size_t>(n));
+  dense_.assign(static_cast<std::size_t>(n), 0.0);
   built_ = true;
   return true;
 }
@@ -112,6 +114,55 @@ void HypersparseColumnSolver::solve(int nb, const int* b_index, const double* b_
   }
   work_.clear(top, end);
   last_reach_ = end - top;
+}
+
+// Block b holds positions R[b]..R[b + 1) − 1; its L and U columns stay inside the block,
+// its F columns lead to earlier blocks, so the blocks run from the last one. Each block's
+// F columns are applied after its U solve in increasing order, as klu_solve does: the same
+// sums in the same order.
+Index HypersparseColumnSolver::solve_dense(int nb, const int* b_index, const double* b_value, Eigen::Ref<Vector> x) {
+  double* y = dense_.data();
+  for (int k = 0; k < nb; ++k) {
+    const std::size_t p = static_cast<std::size_t>(pinv_[static_cast<std::size_t>(b_index[k])]);
+    y[p] += b_value[k] / f_.Rs[p];
+  }
+  const int* Lp = f_.Lp.data();
+  const int* Li = f_.Li.data();
+  const double* Lx = f_.Lx.data();
+  const int* Up = f_.Up.data();
+  const int* Ui = f_.Ui.data();
+  const double* Ux = f_.Ux.data();
+  const int* Fp = f_.Fp.data();
+  const int* Fi = f_.Fi.data();
+  const double* Fx = f_.Fx.data();
+  for (std::size_t b = f_.R.size() - 1; b-- > 0;) {
+    const int k1 = f_.R[b], k2 = f_.R[b + 1];
+    if (k2 - k1 > 1)
+      for (int p = k1; p < k2; ++p) {  // L v = y (unit diagonal, stored)
+        const double v = y[p];
+        if (v == 0.0) continue;
+        for (int k = Lp[p]; k < Lp[p + 1]; ++k)
+          if (Li[k] != p) y[Li[k]] -= Lx[k] * v;
+      }
+    for (int p = k2 - 1; p >= k1; --p) {  // U u = v
+      const double u = (y[p] /= udiag_[static_cast<std::size_t>(p)]);
+      if (u == 0.0 || k2 - k1 == 1) continue;
+      for (int k = Up[p]; k < Up[p + 1]; ++k)
+        if (Ui[k] != p) y[Ui[k]] -= Ux[k] * u;
+    }
+    for (int p = k1; p < k2; ++p) {  // F's columns into earlier blocks, in klu_solve's order
+      const double u = y[p];
+      if (u == 0.0) continue;
+      for (int k = Fp[p]; k < Fp[p + 1]; ++k) y[Fi[k]] -= Fx[k] * u;
+    }
+  }
+  Index nonzeros = 0;
+  for (int k = 0; k < n_; ++k) {
+    x(f_.Q[static_cast<std::size_t>(k)]) = y[k];
+    nonzeros += y[k] != 0.0;
+    y[k] = 0.0;
+  }
+  return nonzeros;
 }
 
 }  // namespace lcprelax::sparse

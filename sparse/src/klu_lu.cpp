@@ -224,7 +224,11 @@ bool KluLu::extract(Factors& out) const {
   out.P.resize(sz(n));
   out.Q.resize(sz(n));
   out.Rs.resize(sz(n));
-  if (n == 0) return true;
+  if (n == 0) {
+    out.R.assign(1, 0);
+    return true;
+  }
+  out.R.resize(static_cast<std::size_t>(m.symbolic->nblocks) + 1);
   const Index lnz = m.numeric->lnz, unz = m.numeric->unz, fnz = m.numeric->nzoff;
   out.Li.resize(sz(lnz));
   out.Lx.resize(sz(lnz));
@@ -235,7 +239,7 @@ bool KluLu::extract(Factors& out) const {
   klu_common common = m.common;
   return klu_extract(m.numeric, m.symbolic, out.Lp.data(), out.Li.data(), out.Lx.data(), out.Up.data(), out.Ui.data(),
                      out.Ux.data(), out.Fp.data(), out.Fi.data(), out.Fx.data(), out.P.data(), out.Q.data(),
-                     out.Rs.data(), nullptr, &common) != 0;
+                     out.Rs.data(), out.R.data(), &common) != 0;
 }
 
 FactorResult KluLu::refactorize(const SparseMatrix& A) {

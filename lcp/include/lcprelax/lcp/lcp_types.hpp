@@ -88,8 +88,10 @@ struct LemkeSettings {
   bool sparse_tie_rows = true;
   /// Entering columns B⁻¹a of the sparse method solved from a's nonzeros (true: hypersparse
   /// solves with the factors of B₀, only the factors' entries that the solution reaches
-  /// visited, sparse/hypersparse_column_solve.hpp) or by a dense triangular solve (false: the
-  /// reference). Same pivots up to the roundoff of the solves.
+  /// visited, sparse/hypersparse_column_solve.hpp; once the solved columns are denser than
+  /// 10%, a dense solve with the same factors that skips the columns of zero entries, which
+  /// repeats klu_solve bit for bit) or by KLU's dense triangular solve (false: the
+  /// reference). Same pivots up to the roundoff of the hypersparse solves.
   bool sparse_columns = true;
   /// Retries after a ray termination or numerical failure (not after the pivot limit):
   /// first `covering_retries` solves with perturbed covering vectors (d_i·(1 + (i mod 7)/7),

@@ -20,6 +20,15 @@
 // visits those nodes and their edges only. KLU's factors are column-wise already, which
 // is the order a column-oriented (scatter) solve needs, so no copy is transposed.
 //
+// solve_dense is the same solve for a dense right-hand side without the search: positions
+// in their topological order (blocks from the last; v forward, then u backward, in each),
+// a column of L, U or F scattered only when its solution entry is nonzero. Work O(n) plus
+// the factors' entries in the columns of nonzero entries: for solutions of medium density,
+// where the reach costs as much as the solve and klu_solve scatters every column, zeros
+// included (Lemke's entering columns on piles of hundreds of bodies: ~40% nonzero). The
+// operations on nonzero entries are klu_solve's, in its order (column-oriented L and U
+// solves per block, then the block's F columns), so the results agree to roundoff.
+//
 // Conventions: no tolerance (exact zeros of the factors are skipped; the result may hold
 // numerically zero entries, all reached positions are reported). Rounding differs from
 // klu_solve only in the order of the sums.
@@ -49,6 +58,11 @@ class HypersparseColumnSolver {
   void solve(int nb, const int* b_index, const double* b_value, std::vector<int>& x_index,
              std::vector<double>& x_value);
 
+  /// x = A⁻¹b, x dense of size n, for b given by its nonzeros as in solve(); the columns
+  /// of the factors whose solution entry is zero are skipped (see the header comment).
+  /// Returns the number of nonzero entries of x. Allocates nothing.
+  Index solve_dense(int nb, const int* b_index, const double* b_value, Eigen::Ref<Vector> x);
+
   /// Nodes visited by the last solve() (v and u nodes: at most 2n; instrumentation).
   int last_reach() const { return last_reach_; }
 
@@ -60,6 +74,7 @@ class HypersparseColumnSolver {
   KluLu::Factors f_;  // column-wise, as extracted
   std::vector<double> udiag_;
   std::vector<int> pinv_;  // position k of row i: P[k] = i
+  std::vector<double> dense_;  // solve_dense's work vector, by position (zero between solves)
   detail::ReachWork work_;  // size 2n
   int last_reach_ = 0;
 };

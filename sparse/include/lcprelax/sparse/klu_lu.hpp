@@ -63,10 +63,11 @@ class KluLu final : public Factorization {
   /// in the permuted order, as a test of hypersparse_solve checks; column l of N is column
   /// Q[l] of A); L unit lower triangular (diagonal stored), U upper triangular, both block
   /// diagonal over the BTF blocks; F the entries above the diagonal blocks. All CSC over
-  /// the permuted indices. Allocates only beyond out's capacity. False when not factorized.
+  /// the permuted indices; R[b]..R[b + 1] − 1 are the positions of diagonal block b (R has
+  /// nblocks + 1 entries). Allocates only beyond out's capacity. False when not factorized.
   struct Factors {
     Index n = 0;
-    std::vector<int> Lp, Li, Up, Ui, Fp, Fi, P, Q;
+    std::vector<int> Lp, Li, Up, Ui, Fp, Fi, P, Q, R;
     std::vector<double> Lx, Ux, Fx, Rs;
   };
   bool extract(Factors& out) const;
