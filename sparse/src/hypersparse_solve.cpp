@@ -35,7 +35,7 @@ void HypersparseTransposedSolver::reserve(const KluLu& klu) {
   klu.factor_counts(lnz, unz, fnz);
   const std::size_t n = static_cast<std::size_t>(klu.rows()), two_n = 2 * n;
   KluLu::Factors& f = factors_;
-  for (auto* v : {&f.Lp, &f.Up, &f.Fp, &U_.start, &L_.start, &F_.start, &next_}) v->reserve(n + 1);
+  for (auto* v : {&f.Lp, &f.Up, &f.Fp, &f.R, &U_.start, &L_.start, &F_.start, &next_}) v->reserve(n + 1);
   for (auto* v : {&f.P, &f.Q, &p_, &qinv_}) v->reserve(n);
   for (auto* v : {&f.Rs, &udiag_, &rs_}) v->reserve(n);
   f.Li.reserve(static_cast<std::size_t>(lnz));
