@@ -118,8 +118,8 @@ TEST(HypersparseTransposedSolve, AgreesWithKluDenseTransposedSolve) {
 
 TEST(HypersparseColumnSolve, AgreesWithKluDenseSolve) { check_against_klu<sparse::HypersparseColumnSolver>(false); }
 
-// solve_dense against klu_solve on the same matrices, for right-hand sides with about half
-// of their entries zero (columns of the solution are then skipped): klu_solve's sums in its
+// solve_dense against klu_solve on the same matrices, for right-hand sides 2% and 50% dense
+// (the solutions then have zero entries, whose columns are skipped): klu_solve's sums in its
 // order, so the results are the same to the last bit; the count of nonzeros is returned.
 TEST(HypersparseColumnSolve, DenseSolveRepeatsKluSolveBitForBit) {
   std::mt19937 rng(23);

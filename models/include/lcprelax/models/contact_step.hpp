@@ -123,11 +123,12 @@ constexpr int kLcpPerturbationSeeds = 3;
 /// --warmup 1 --seed S`, pivots per step for seeds 1, 2, 3 with a cap of 1: 9,909, 10,894,
 /// 12,278; 2: 8,394, 8,334, 12,758; 3: 8,394, 8,334, 8,614; at 200 bodies (seed 1, 10 steps)
 /// 7,580 with 1 and 2,372 with 2 and 3; 100 bodies unchanged. A path that fails at the cap
-/// costs about two cold solves (1.4–1.7 pivots per unknown each) more. Raised from 3 to 5
+/// costs about two cold solves (1.4–1.7 pivots per unknown each) more. 5 rather than 3
 /// (bench/results/lemke_dense_skip.txt): on seed 3's 500-body window a crash path that
-/// solved at 3.08 per unknown was stopped at 3 and the step paid two cold paths after it
-/// (26.8k pivots capped, 25.2k solved): pivots per step 20,165 with 3, 12,388 with 5 or 10
-/// (no crash path between 5 and 10 per unknown); seeds 1, 2, 4 unchanged (no path reached 3).
+/// solves at 3.08 per unknown is stopped by a cap of 3 and the step pays two cold paths
+/// after it (26.8k pivots capped, 25.2k solved): pivots per step 20,165 with 3, 12,388 with
+/// 5 or 10 (no crash path between 5 and 10 per unknown); seeds 1, 2, 4 the same with 3 and
+/// 5 (no path reaches 3).
 constexpr double kLcpWarmCrashPivotsPerUnknown = 5.0;
 /// Step 1b's restarts after an early ray: when the crash path from the warm basis ends on
 /// a ray within kLcpWarmRayPivotsPerUnknown pivots per unknown, the contacts that its pivots
