@@ -175,24 +175,29 @@ Traced solve_traced(const SparseMatrix& M, const Vector& q, bool sparse_rows, bo
 // The reference (dense solves of the chosen kind) and the hypersparse variant take the same
 // pivots: rows = true compares tie rows (full vs sparse, dense columns in both), rows =
 // false the entering columns (dense vs sparse, sparse tie rows in both).
-// `expected`: the status both must end with (a plain Lemke path of a pile may end on a ray).
+// Both end with the same status; `must_solve`: that status must be `solved`. Without it,
+// any end is accepted: a plain Lemke path (no retries) of a degenerate pile may end on a
+// ray or, where roundoff led it to a singular basis or an inaccurate end, with a numerical
+// error, and which one depends on the factorization's roundoff (its orderings), not on the
+// variant under test.
 // `lu`: LemkeSettings::lu_pivot_tolerance of both.
 void expect_same_pivots(const SparseMatrix& M, const Vector& q, long min_tie_breaks, bool rows = true,
-                        LcpStatus expected = LcpStatus::solved, double lu = LemkeSettings{}.lu_pivot_tolerance) {
+                        bool must_solve = true, double lu = LemkeSettings{}.lu_pivot_tolerance) {
   const Traced full = rows ? solve_traced(M, q, false, false, lu) : solve_traced(M, q, true, false, lu);
   const Traced sparse = rows ? solve_traced(M, q, true, false, lu) : solve_traced(M, q, true, true, lu);
   std::printf("full: %s %ld pivots %ld ties; sparse: %s %ld pivots %ld ties\n", to_string(full.result.info.status),
               full.result.info.pivots, full.result.info.tie_breaks, to_string(sparse.result.info.status),
               sparse.result.info.pivots, sparse.result.info.tie_breaks);
-  ASSERT_EQ(full.result.info.status, expected) << full.result.info.message;
-  ASSERT_EQ(sparse.result.info.status, expected) << sparse.result.info.message;
+  if (must_solve) ASSERT_EQ(full.result.info.status, LcpStatus::solved) << full.result.info.message;
+  ASSERT_EQ(sparse.result.info.status, full.result.info.status) << sparse.result.info.message;
+  ASSERT_NE(full.result.info.status, LcpStatus::pivot_limit);
   EXPECT_GE(sparse.result.info.tie_breaks, min_tie_breaks);
   EXPECT_EQ(sparse.result.info.tie_breaks, full.result.info.tie_breaks);
   EXPECT_EQ(sparse.result.info.pivots, full.result.info.pivots);
   ASSERT_EQ(sparse.trace.size(), full.trace.size());
   for (std::size_t k = 0; k < full.trace.size(); ++k)
     ASSERT_EQ(sparse.trace[k], full.trace[k]) << "pivot " << k / 2;
-  if (expected != LcpStatus::solved) return;
+  if (full.result.info.status != LcpStatus::solved) return;
   EXPECT_EQ(sparse.result.z_basic, full.result.z_basic);
   EXPECT_LE((sparse.result.z - full.result.z).lpNorm<Eigen::Infinity>(),
             1e-9 * std::max(1.0, full.result.z.lpNorm<Eigen::Infinity>()));
@@ -217,7 +222,7 @@ TEST(LemkeSparseColumns, SamePivotSequenceAsDenseSolvesOnPolygonPile) {
   const io::Fc2dData d =
       io::read_siconos_fc2d(std::string(LCPRELAX_TEST_DATA_DIR) + "/generated/fc2d_pile_00186_b60_s150.dat");
   const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
-  expect_same_pivots(lcp.M, lcp.q, 0, /*rows=*/false, LcpStatus::ray_termination);  // cold, no retries
+  expect_same_pivots(lcp.M, lcp.q, 0, /*rows=*/false, /*must_solve=*/false);  // cold, no retries
 }
 
 // Redundant contacts: M = J Jᵀ (positive semidefinite, singular) with J (3k × k), and q =
@@ -246,12 +251,15 @@ SparseMatrix redundant_contacts(Vector& q) {
 
 // Whether its degenerate ratios tie is decided by roundoff: its path has tie-breaks with
 // KLU's sparsity-favouring pivoting threshold (0.001), none with true partial pivoting (the
-// default, LemkeSettings::lu_pivot_tolerance), so it runs with the former. The granular
-// problem above has ties with the default.
+// default, LemkeSettings::lu_pivot_tolerance), so it runs with the former, which may also
+// lose the accuracy of the end (a numerical error: measured with the singleton-first
+// analysis, 192 pivots; solved in 187 with KLU's analysis of the whole basis). Solving it
+// is SolvesRedundantContactsWithTheDefaultRetries' test; the granular problem above has
+// ties with the default and must solve.
 TEST(LemkeSparseTieRows, SamePivotSequenceAsFullRowsOnRedundantContacts) {
   Vector q;
   const SparseMatrix M = redundant_contacts(q);
-  expect_same_pivots(M, q, 1, true, LcpStatus::solved, 0.001);
+  expect_same_pivots(M, q, 1, true, /*must_solve=*/false, 0.001);
 }
 
 // Its path visits nearly singular bases (KLU's rcond 1e-15…1e-13, measured), where the two

@@ -10,7 +10,9 @@
 // solve with them that skips zero entries once the solved columns are denser than 10%
 // (sparse/hypersparse_column_solve.hpp; KLU's dense solve if they cannot be extracted).
 // KLU pivots with the threshold LemkeSettings::lu_pivot_tolerance (1: true partial pivoting,
-// the default; KLU's own 0.001 lost accuracy on degenerate pile bases, lcp_types.hpp).
+// the default; KLU's own 0.001 lost accuracy on degenerate pile bases, lcp_types.hpp). Its
+// symbolic analysis takes the slack columns e_i of B₀ first as 1×1 blocks and analyses the
+// basic z columns in the other rows only (KluLu::analyze, column singletons first).
 // B₀ is factorized in the basis' own KLU object or in a shared one (lemke.hpp
 // LemkeSharedFactorization); either way KLU's symbolic analysis is skipped when B₀ has the
 // pattern analysed last (the orderings depend on the pattern only: same factors).

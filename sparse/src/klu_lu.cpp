@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "klu_singleton_analysis.hpp"
 #include "matrix_checks.hpp"
 
 namespace lcprelax::sparse {
@@ -26,6 +27,9 @@ struct KluLu::Impl {
   bool factored = false;
   double rcond = 0.0;
   double factor_rcond = 0.0;  // rcond of the last factorize() (the pivots' own values)
+  int peeled = 0;             // column singletons put first by the last analyze()
+  bool singletons_first = true;
+  detail::SingletonAnalysisWork singleton_work;
   bool reused = false;        // the last successful factorization was klu_refactor
 
   Impl() {
@@ -44,6 +48,7 @@ struct KluLu::Impl {
     if (symbolic) klu_free_symbolic(&symbolic, &common);
     pattern.clear();
     n = 0;
+    peeled = 0;
     analysed = false;
   }
 
@@ -121,7 +126,12 @@ FactorResult KluLu::analyze(const SparseMatrix& A) {
   const SparseMatrix& M = ref.get();
   const Index n = static_cast<Index>(M.rows());
   if (n > 0) {
-    m.symbolic = klu_analyze(n, ptr(M.outerIndexPtr()), ptr(M.innerIndexPtr()), &m.common);
+    // Column singletons first, KLU's analysis of the rest (klu_singleton_analysis.hpp);
+    // KLU's analysis of the whole matrix when that does not apply.
+    if (m.singletons_first)
+      m.symbolic = detail::analyze_singletons_first(static_cast<int>(n), M.outerIndexPtr(), M.innerIndexPtr(),
+                                                    &m.common, m.singleton_work, m.peeled);
+    if (!m.symbolic) m.symbolic = klu_analyze(n, ptr(M.outerIndexPtr()), ptr(M.innerIndexPtr()), &m.common);
     if (!m.symbolic) return m.from_common("klu_analyze");
   }
   m.pattern.assign(M);
@@ -289,6 +299,14 @@ long KluLu::factor_nnz() const {
 }
 
 Index KluLu::rows() const { return impl_ ? impl_->n : 0; }
+
+Index KluLu::leading_singletons() const { return impl_ ? impl_->peeled : 0; }
+
+void KluLu::set_singletons_first(bool on) {
+  if (impl_) impl_->singletons_first = on;
+}
+
+bool KluLu::singletons_first() const { return impl_ && impl_->singletons_first; }
 
 double KluLu::rcond() const { return impl_ ? impl_->rcond : 0.0; }
 
