@@ -82,8 +82,11 @@ klu_symbolic* analyze_singletons_first(int n, const int* Ap, const int* Ai, klu_
       const int i = Ai[p];
       if (i <= previous || i >= n) return nullptr;  // unsorted, repeated or out of range
       previous = i;
+      // Kept or not without a branch (about half of a Lemke basis' entries are in slack
+      // rows, in no predictable order): the slot is overwritten when the row is not kept.
       const int r = w.reduced_row[static_cast<std::size_t>(i)];
-      if (r >= 0) w.Ki[static_cast<std::size_t>(e++)] = r;
+      w.Ki[static_cast<std::size_t>(e)] = r;
+      e += r >= 0;
     }
     w.Kp[static_cast<std::size_t>(++c)] = e;
   }
