@@ -251,10 +251,9 @@ SparseMatrix redundant_contacts(Vector& q) {
 
 // Whether its degenerate ratios tie is decided by roundoff: its path has tie-breaks with
 // KLU's sparsity-favouring pivoting threshold (0.001), none with true partial pivoting (the
-// default, LemkeSettings::lu_pivot_tolerance), so it runs with the former, which may also
-// lose the accuracy of the end (a numerical error: measured with the singleton-first
-// analysis, 192 pivots; solved in 187 with KLU's analysis of the whole basis). Solving it
-// is SolvesRedundantContactsWithTheDefaultRetries' test; the granular problem above has
+// default, LemkeSettings::lu_pivot_tolerance), so it runs with the former, whose plain path
+// may also end inaccurate (a numerical error), depending on the factors' roundoff. Solving
+// it is SolvesRedundantContactsWithTheDefaultRetries' test; the granular problem above has
 // ties with the default and must solve.
 TEST(LemkeSparseTieRows, SamePivotSequenceAsFullRowsOnRedundantContacts) {
   Vector q;

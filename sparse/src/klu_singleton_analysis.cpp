@@ -48,25 +48,25 @@ klu_symbolic* analyze_singletons_first(int n, const int* Ap, const int* Ai, klu_
   peeled = 0;
   if (n <= 0 || !common->btf || common->ordering != 0) return nullptr;
   const auto N = static_cast<std::size_t>(n);
-  // Column singletons, each on a row of its own.
-  w.row_owner.assign(N, -1);
+  // Column singletons, each on a row of its own: their rows are marked −1 in reduced_row,
+  // then the other rows are numbered in order (the row map is increasing, so sorted
+  // columns stay sorted in K).
+  w.reduced_row.assign(N, 0);
   int s = 0;
   for (int j = 0; j < n; ++j) {
     if (Ap[j + 1] - Ap[j] != 1) continue;
     const int i = Ai[Ap[j]];
-    if (i < 0 || i >= n || w.row_owner[static_cast<std::size_t>(i)] >= 0) return nullptr;
-    w.row_owner[static_cast<std::size_t>(i)] = j;
+    if (i < 0 || i >= n || w.reduced_row[static_cast<std::size_t>(i)] < 0) return nullptr;
+    w.reduced_row[static_cast<std::size_t>(i)] = -1;
     ++s;
   }
   if (s == 0) return nullptr;
-  // K: the rows without a singleton and the columns that are not singletons, in A's order
-  // (the row map is increasing, so sorted columns stay sorted).
+  // K: the rows without a singleton and the columns that are not singletons, in A's order.
   const int m = n - s;
-  w.reduced_row.assign(N, -1);
   w.kept_row.clear();
   w.kept_col.clear();
   for (int i = 0; i < n; ++i)
-    if (w.row_owner[static_cast<std::size_t>(i)] < 0) {
+    if (w.reduced_row[static_cast<std::size_t>(i)] == 0) {
       w.reduced_row[static_cast<std::size_t>(i)] = static_cast<int>(w.kept_row.size());
       w.kept_row.push_back(i);
     }

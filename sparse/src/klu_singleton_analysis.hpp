@@ -11,9 +11,9 @@
 // is a block triangular form of A with K's blocks and the singletons as its diagonal
 // blocks: the same strongly connected components that KLU's BTF of the whole of A would
 // find (Duff & Reid, "An implementation of Tarjan's algorithm for the block
-// triangularization of a matrix", ACM TOMS 4, 1978: a 1×1 block is a node in no cycle), so
-// the factors have the same blocks and fill; only the order of independent blocks may
-// differ. The work of the analysis (maximum transversal, strongly connected components,
+// triangularization of a matrix", ACM TOMS 4, 1978: a 1×1 block is a node in no cycle).
+// Only the order of independent blocks and AMD's tie-breaks inside K's blocks (its input
+// comes in K's order) may differ, and with them the fill and the roundoff. The work of the analysis (maximum transversal, strongly connected components,
 // AMD) is then that of K: on a Lemke basis most columns are slack columns e_i, and K is
 // the much smaller block of the basic z columns.
 //
@@ -28,7 +28,7 @@ namespace lcprelax::sparse::detail {
 
 /// Scratch of analyze_singletons_first (kept between calls to avoid reallocation).
 struct SingletonAnalysisWork {
-  std::vector<int> row_owner, reduced_row, kept_row, kept_col, Kp, Ki;
+  std::vector<int> reduced_row, kept_row, kept_col, Kp, Ki;
 };
 
 /// Symbolic analysis of the n×n CSC pattern (Ap, Ai) with its column singletons as the
