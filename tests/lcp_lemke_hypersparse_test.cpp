@@ -188,7 +188,9 @@ void expect_same_pivots(const SparseMatrix& M, const Vector& q, long min_tie_bre
   std::printf("full: %s %ld pivots %ld ties; sparse: %s %ld pivots %ld ties\n", to_string(full.result.info.status),
               full.result.info.pivots, full.result.info.tie_breaks, to_string(sparse.result.info.status),
               sparse.result.info.pivots, sparse.result.info.tie_breaks);
-  if (must_solve) ASSERT_EQ(full.result.info.status, LcpStatus::solved) << full.result.info.message;
+  if (must_solve) {
+    ASSERT_EQ(full.result.info.status, LcpStatus::solved) << full.result.info.message;
+  }
   ASSERT_EQ(sparse.result.info.status, full.result.info.status) << sparse.result.info.message;
   ASSERT_NE(full.result.info.status, LcpStatus::pivot_limit);
   EXPECT_GE(sparse.result.info.tie_breaks, min_tie_breaks);

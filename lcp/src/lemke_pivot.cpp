@@ -64,13 +64,23 @@ void LemkeSolver::Impl::run() {
 }
 
 // a = B⁻¹ c_entering and the rows where a_i > tol (the ratio test's candidates); false if
-// there are none.
+// there are none. The rows are collected without a branch per row (rows has capacity n:
+// every index is written, the count advances only where a_i > tol): on pile bases a
+// large share of a solved column's entries are candidates, and a data-dependent branch
+// mispredicts (with the x_B update below, 1.04-1.06x less time per step on a dropping
+// 500-body pile, same pivots: bench/results/lemke_branch_free_loops.txt).
 bool LemkeSolver::Impl::entering_candidates(Index entering) {
   basis->solve_column(entering, a);
-  rows.clear();
-  for (Index i = 0; i < n; ++i)
-    if (a(i) > tol) rows.push_back(i);
-  return !rows.empty();
+  rows.resize(static_cast<std::size_t>(n));
+  Index count = 0;
+  const double* av = a.data();
+  Index* out = rows.data();
+  for (Index i = 0; i < n; ++i) {
+    out[count] = i;
+    count += av[i] > tol;
+  }
+  rows.resize(static_cast<std::size_t>(count));
+  return count > 0;
 }
 
 // Lemke's pivots from the factorized current basis (without z₀) and x_B = B⁻¹q: z₀
@@ -99,10 +109,11 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
     // Pivot on (r, entering): update the factorization and x_B.
     const bool updated = basis->replace(r, a);
     factor_current = false;
-    const double ar = a(r);
-    xB(r) /= ar;
-    for (Index i = 0; i < n; ++i)
-      if (i != r && a(i) != 0.0) xB(i) -= a(i) * xB(r);
+    // x_B(r) ← x_B(r)/a_r, x_B(i) ← x_B(i) − a_i·x_B(r) elsewhere: one vectorized pass
+    // over all rows (a_i = 0 leaves x_B(i) unchanged, bit for bit, as x_B(r) is finite).
+    const double xr = xB(r) / a(r);
+    xB.noalias() -= xr * a;
+    xB(r) = xr;
     const Index leaving = basic[r];
     trace_pivot(entering, leaving);
     basic[r] = entering;
