@@ -13,9 +13,10 @@
 // find (Duff & Reid, "An implementation of Tarjan's algorithm for the block
 // triangularization of a matrix", ACM TOMS 4, 1978: a 1×1 block is a node in no cycle).
 // Only the order of independent blocks and AMD's tie-breaks inside K's blocks (its input
-// comes in K's order) may differ, and with them the fill and the roundoff. The work of the analysis (maximum transversal, strongly connected components,
-// AMD) is then that of K: on a Lemke basis most columns are slack columns e_i, and K is
-// the much smaller block of the basic z columns.
+// comes in K's order) may differ, and with them the fill and the roundoff. The work of
+// the analysis (maximum transversal, strongly connected components, AMD) is then that of
+// K: on a Lemke basis most columns are slack columns e_i, and K is the much smaller block
+// of the basic z columns.
 //
 // The result is an ordinary klu_symbolic (allocated as KLU allocates it, freed by
 // klu_free_symbolic), so klu_factor, klu_refactor, klu_solve, klu_extract and klu_rcond use
