@@ -348,12 +348,11 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         if (settings_.warm_start) {
           Vector code = Vector::Zero(nc + nf);  // a contact not in warm_: nothing basic
           for (Index c = 0; c < nc; ++c) {
-            auto it = warm_.find(keys[s.contacts[c]]);
-            if (it != warm_.end()) code(c) = it->second.normal;
+            if (const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[c]])) code(c) = e->normal;
           }
           for (Index f = 0; f < nf; ++f) {
-            auto it = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
-            if (it != warm_.end()) code(nc + f) = it->second.friction;
+            if (const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[s.friction_rows[f]]]))
+              code(nc + f) = e->friction;
           }
           decode_lcp_basis(code, nc, nf, warm);
         }
@@ -367,13 +366,13 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         if (settings_.warm_start) {
           warm.assign(static_cast<std::size_t>(nc + nf), 0);
           for (Index c = 0; c < nc; ++c) {
-            auto it = warm_.find(keys[s.contacts[c]]);
-            warm[c] = it == warm_.end() ? -1 : (it->second.normal > 0.5 ? 1 : 0);
+            const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[c]]);
+            warm[c] = !e ? -1 : (e->normal > 0.5 ? 1 : 0);
           }
           for (Index f = 0; f < nf; ++f) {
-            auto it = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
-            if (it == warm_.end()) continue;
-            const int bits = friction_basis_bits(it->second.friction);
+            const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
+            if (!e) continue;
+            const int bits = friction_basis_bits(e->friction);
             warm[nc + f] = (bits & kBasisPlus) ? 1 : ((bits & kBasisMinus) ? -1 : 0);
           }
         }
@@ -419,7 +418,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
 
   // Velocities: islands from their solutions, free bodies by gravity and applied forces.
   std::vector<bool> in_island(world.bodies.size(), false);
-  std::map<ContactKey, WarmEntry> next_warm;
+  next_warm_.clear();
   Vector code;
   for (std::size_t i = 0; i < work.size(); ++i) {
     const ContactSystem& s = work[i].system;
@@ -447,11 +446,12 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     // The LCP's final basis, or the convex active-set method's final active states.
     if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       encode_lcp_basis(sol.z_basic, nc, nf, code);
-      for (Index c = 0; c < nc; ++c) next_warm[keys[s.contacts[c]]].normal = code(c);
-      for (Index f = 0; f < nf; ++f) next_warm[keys[s.contacts[s.friction_rows[f]]]].friction = code(nc + f);
+      for (Index c = 0; c < nc; ++c) next_warm_.set_normal(keys[s.contacts[c]], code(c));
+      for (Index f = 0; f < nf; ++f) next_warm_.set_friction(keys[s.contacts[s.friction_rows[f]]], code(nc + f));
     }
   }
-  warm_.swap(next_warm);
+  next_warm_.finish();
+  warm_.swap(next_warm_);
   if (!lcp && settings_.reuse_convex_solvers) {
     for (int i = 0; i < n_islands; ++i) {
       const ConvexSolverStats& c = caches[i]->stats;

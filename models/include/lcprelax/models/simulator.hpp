@@ -29,6 +29,7 @@
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/convex_solver_cache.hpp>
 #include <lcprelax/models/contact_system.hpp>
+#include <lcprelax/models/contact_warm_table.hpp>
 #include <lcprelax/world/world.hpp>
 
 #include <map>
@@ -201,10 +202,6 @@ class Simulator {
  private:
   void check_extreme_values() const;  // the kMaxSceneMagnitude checks of the constructor
   using ContactKey = lcprelax::ContactKey;
-  /// A contact's part of the last basis or active set, as lcp_basis_codes.hpp's codes.
-  struct WarmEntry {
-    double normal = 0.0, friction = 0.0;
-  };
   std::vector<ContactKey> contact_keys() const;
   void project_positions(const ContactSystem& s, const Vector& v_next, StepStats& stats);
   /// One further post-stabilization pass on the contacts at the current positions; false
@@ -216,7 +213,9 @@ class Simulator {
   double time_ = 0.0;
   long steps_ = 0;
   std::vector<Contact> contacts_;
-  std::map<ContactKey, WarmEntry> warm_;
+  /// Each contact's part of the last basis or active set (contact_warm_table.hpp), and the
+  /// table the step fills for the next one (swapped with it: both keep their capacity).
+  ContactWarmTable warm_, next_warm_;
   /// Convex model: each island's phase solvers, keyed by the island's smallest body index
   /// (an island keeps it while its bodies stay together); dropped when no island has it.
   std::map<int, ConvexSolverCache> convex_caches_;

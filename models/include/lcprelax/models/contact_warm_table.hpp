@@ -1,0 +1,57 @@
+#pragma once
+// The previous step's basis (LCP model) or active set (convex active-set model) per
+// contact, keyed by the contact's identity across steps (contact_system.hpp ContactKey),
+// as the codes of lcp_basis_codes.hpp: what the simulator's warm starts read.
+//
+// A sorted array searched by bisection. The simulator refills a second table each step
+// and swaps the two, so the storage keeps its capacity and a step allocates nothing per
+// contact once the tables have grown to the scene's contact count (a std::map allocated
+// one node per contact per step; tests/simulator_step_allocation_test.cpp).
+//
+// Writes follow std::map's `table[key].normal = x` semantics exactly: a key written
+// several times keeps, for each field, the last value written to it, and a field never
+// written is 0.
+#include <lcprelax/models/contact_system.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace lcprelax {
+
+class ContactWarmTable {
+ public:
+  struct Entry {
+    double normal = 0.0, friction = 0.0;
+  };
+
+  /// Empties the table for refilling (capacity kept).
+  void clear();
+  /// Records a write of one field of `key`'s entry; find() needs finish() first.
+  void set_normal(const ContactKey& key, double code) { writes_.push_back({key, writes_.size(), code, true}); }
+  void set_friction(const ContactKey& key, double code) { writes_.push_back({key, writes_.size(), code, false}); }
+  /// Merges the writes into one entry per key, sorted by key (no allocation beyond the
+  /// capacity that the writes already needed).
+  void finish();
+  /// The entry of `key`, or nullptr when the table has none (after finish()).
+  const Entry* find(const ContactKey& key) const;
+  /// Number of keys (after finish()).
+  std::size_t size() const { return keys_.size(); }
+  void swap(ContactWarmTable& other) noexcept {
+    writes_.swap(other.writes_);
+    keys_.swap(other.keys_);
+    entries_.swap(other.entries_);
+  }
+
+ private:
+  struct Write {
+    ContactKey key;
+    std::size_t order;  // position among the writes: later writes win
+    double code;
+    bool normal;  // which field
+  };
+  std::vector<Write> writes_;
+  std::vector<ContactKey> keys_;  // sorted, distinct
+  std::vector<Entry> entries_;    // entries_[i] belongs to keys_[i]
+};
+
+}  // namespace lcprelax

@@ -1,0 +1,40 @@
+// ContactWarmTable (contact_warm_table.hpp): writes sorted by (key, order), then merged
+// per key in write order.
+#include <lcprelax/models/contact_warm_table.hpp>
+
+#include <algorithm>
+#include <tuple>
+
+namespace lcprelax {
+
+void ContactWarmTable::clear() {
+  writes_.clear();
+  keys_.clear();
+  entries_.clear();
+}
+
+void ContactWarmTable::finish() {
+  // std::sort works in place (no allocation); the order field makes the sort total, so
+  // the merge below sees each key's writes in the order they were made.
+  std::sort(writes_.begin(), writes_.end(),
+            [](const Write& a, const Write& b) { return std::tie(a.key, a.order) < std::tie(b.key, b.order); });
+  keys_.clear();
+  entries_.clear();
+  keys_.reserve(writes_.size());
+  entries_.reserve(writes_.size());
+  for (const Write& w : writes_) {
+    if (keys_.empty() || keys_.back() != w.key) {
+      keys_.push_back(w.key);
+      entries_.emplace_back();
+    }
+    (w.normal ? entries_.back().normal : entries_.back().friction) = w.code;
+  }
+}
+
+const ContactWarmTable::Entry* ContactWarmTable::find(const ContactKey& key) const {
+  const auto it = std::lower_bound(keys_.begin(), keys_.end(), key);
+  if (it == keys_.end() || *it != key) return nullptr;
+  return &entries_[static_cast<std::size_t>(it - keys_.begin())];
+}
+
+}  // namespace lcprelax
