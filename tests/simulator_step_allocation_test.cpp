@@ -5,8 +5,8 @@
 // model: the allocations per step over steps 4–13 are the same for a base of 5 (15 boxes,
 // 50 contacts) and of 15 (120 boxes, 450 contacts), up to kSlack allocations (containers
 // that grow by doubling reach their size in a few more reallocations for 9× the
-// contacts). Measured: LCP 387 and 415, convex 304 and 345; with a std::map of the
-// previous basis rebuilt per step the LCP model made 437 and 865.
+// contacts). Measured: LCP 387 and 415, convex 304 and 345; a std::map of the previous
+// basis rebuilt per step (one node per contact) gives 437 and 865, which the test rejects.
 #include <lcprelax/models/simulator.hpp>
 
 #include "allocation_counter.hpp"

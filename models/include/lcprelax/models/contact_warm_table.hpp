@@ -5,8 +5,8 @@
 //
 // A sorted array searched by bisection. The simulator refills a second table each step
 // and swaps the two, so the storage keeps its capacity and a step allocates nothing per
-// contact once the tables have grown to the scene's contact count (a std::map allocated
-// one node per contact per step; tests/simulator_step_allocation_test.cpp).
+// contact once the tables have grown to the scene's contact count (a node-based map would
+// allocate one node per contact per step; tests/simulator_step_allocation_test.cpp).
 //
 // Writes follow std::map's `table[key].normal = x` semantics exactly: a key written
 // several times keeps, for each field, the last value written to it, and a field never
