@@ -52,7 +52,14 @@ void LemkeSolver::Impl::allocate() {
 // A fresh basis object for `method`: no factorization, and none of the adaptive state of
 // earlier solves (the sparse basis' running column density, lemke_basis_sparse.cpp).
 void LemkeSolver::Impl::new_basis() {
-  const detail::LemkeColumns cols{&M, &d, n};
+  detail::LemkeColumns cols{&M, &d, n};
+  if (has_lifted && settings.lifted_basis) {
+    cols.J = &lifted_J;
+    cols.JT = &lifted_JT;
+    cols.H = &lifted_H;
+    cols.dof_inverse_mass = &lifted_d;
+    cols.shift = &lifted_shift;
+  }
   basis = method == LemkeMethod::dense
               ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
               : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns,
@@ -137,8 +144,57 @@ LemkeSolver::~LemkeSolver() = default;
 LemkeSolver::LemkeSolver(LemkeSolver&&) noexcept = default;
 LemkeSolver& LemkeSolver::operator=(LemkeSolver&&) noexcept = default;
 
-void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
+void LemkeSolver::setup(const SparseMatrix& M, const Vector& q, const LcpLiftedForm& lifted) {
   Impl& m = *impl_;
+  const Index n = M.rows(), dofs = lifted.J.cols();
+  if (lifted.J.rows() != n || lifted.H.rows() != n || lifted.H.cols() != n || lifted.d.size() != dofs)
+    throw InputError("LCP: lifted form has J " + std::to_string(lifted.J.rows()) + "x" + std::to_string(dofs) +
+                     ", d " + std::to_string(lifted.d.size()) + ", H " + std::to_string(lifted.H.rows()) + "x" +
+                     std::to_string(lifted.H.cols()) + " for M of size " + std::to_string(n));
+  auto finite = [](const SparseMatrix& A) {
+    for (Index k = 0; k < A.nonZeros(); ++k)
+      if (!std::isfinite(A.valuePtr()[k])) return false;
+    return true;
+  };
+  if (!finite(lifted.J) || !finite(lifted.H) || !lifted.d.allFinite())
+    throw InputError("LCP: lifted form has a NaN or infinite entry");
+  if (dofs > 0 && !(lifted.d.minCoeff() > 0)) throw InputError("LCP: lifted form needs d > 0");
+  m.lifted_J = lifted.J;
+  m.lifted_J.makeCompressed();
+  m.lifted_JT = lifted.J.transpose();
+  m.lifted_JT.makeCompressed();
+  m.lifted_H = lifted.H;
+  m.lifted_H.makeCompressed();
+  m.lifted_d = lifted.d;
+  m.lifted_shift = 0.0;
+  m.has_lifted = true;
+  m.setup(M, q);  // validates M and q
+  // M r = J (d ∘ Jᵀr) + H r for two probe vectors (one positive, one of alternating sign).
+  for (int probe = 0; probe < 2; ++probe) {
+    Vector r(n);
+    for (Index i = 0; i < n; ++i) r(i) = (probe == 0 ? 1.0 : (i % 2 ? -1.0 : 1.0)) * (1.0 + (i % 7) / 7.0);
+    const Vector delassus_part = m.lifted_J * m.lifted_d.cwiseProduct(m.lifted_JT * r);
+    const Vector h_part = m.lifted_H * r, m_part = m.M * r;
+    const double scale = std::max({m_part.lpNorm<Eigen::Infinity>(), delassus_part.lpNorm<Eigen::Infinity>(),
+                                   h_part.lpNorm<Eigen::Infinity>(), std::numeric_limits<double>::min()});
+    const double mismatch = (m_part - delassus_part - h_part).lpNorm<Eigen::Infinity>() / scale;
+    if (!(mismatch <= 1e-8)) {
+      m.has_lifted = false;
+      m.is_setup = false;
+      throw InputError("LCP: lifted form J diag(d) J^T + H differs from M (relative " + std::to_string(mismatch) +
+                       " on a probe vector)");
+    }
+  }
+}
+
+void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
+  impl_->has_lifted = false;
+  impl_->setup(M, q);
+}
+
+// Validates M and q and sizes everything for them (the lifted form, if any, is set).
+void LemkeSolver::Impl::setup(const SparseMatrix& M, const Vector& q) {
+  Impl& m = *this;
   if (M.rows() != M.cols()) throw InputError("LCP: M is not square");
   if (q.size() != M.rows()) throw InputError("LCP: q has size " + std::to_string(q.size()) + ", M has " +
                                              std::to_string(M.rows()) + " rows");
@@ -237,6 +293,7 @@ const LcpResult& LemkeSolver::solve() {
       if (covering)
         for (Index i = 0; i < m.n; ++i) m.d(i) *= k % 2 == 0 ? 1.0 + (i % 7) / 7.0 : 1.0 + 1e-3 * i;
       m.M = M0;
+      m.lifted_shift = covering ? 0.0 : eps;
       if (!covering) {
         m.M = M0 + eps * I;
         m.M.makeCompressed();
@@ -265,6 +322,7 @@ const LcpResult& LemkeSolver::solve() {
       if (!covering) eps *= 100.0;
     }
     m.M = M0;  // the basis factorization (for backward) is that of the accepted retry
+    m.lifted_shift = 0.0;
     m.d = d0;
     m.factor_current = false;
     m.result.info.pivots = pivots;

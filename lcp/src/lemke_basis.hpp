@@ -15,6 +15,22 @@
 //       B⁻¹ = B₀⁻¹ − (W − E_P) S⁻¹ E_Pᵀ B₀⁻¹,   S = E_Pᵀ W   (|P|×|P|, dense LU),
 //   so memory is O(nnz(L+U) + n·|P|) and no dense n×n array is formed. B₀ is refactorized
 //   when |P| reaches the refactorization interval (at most kMaxSchurUpdates).
+//   Lifted (LemkeColumns::lifted(), from LemkeSolver::setup's LcpLiftedForm M = Ĵ D Ĵᵀ + H,
+//   D = diag(d) > 0, Ĵ n × m): instead of B₀, whose z columns hold the Delassus part ĴDĴᵀ
+//   (dense among the contacts of a body, and so fill and roundoff in every solve: on pile
+//   bases ~50% of the entries of B₀⁻¹c come out nonzero, 1% above 1e-10 of the largest),
+//   the sparse basis factorizes the (n + m)-square
+//       K = [ E_w − (H + σI) E_z   −Ĵ  ]
+//           [ −Ĵᵀ E_z              D⁻¹ ]
+//   (E_w, E_z: the basis' w and z columns; σ: a regularization shift, 0 unless Lemke's
+//   M + εI retry runs), whose Schur complement on the first n rows is B₀ (the momentum
+//   rows give y = D Ĵᵀ E_z x). So B₀⁻¹c is the top of K⁻¹[c; 0] and B₀⁻ᵀr the top of
+//   K⁻ᵀ[r; 0]: the same numbers up to roundoff, from sparser factors (the augmented
+//   system against the normal equations, as in the convex model's lifted QP and in the
+//   mixed-LCP form of rigid-body contact: Anitescu & Potra, "Formulating dynamic multi-
+//   rigid-body contact problems with friction as solvable linear complementarity
+//   problems", Nonlinear Dynamics 14, 1997). Everything outside the factorization (the
+//   tableau, x_B, the residuals) still reads M.
 //
 // Allocation: both bases own their work arrays, sized at construction (n and the
 // refactorization interval are fixed then). solve_column, solve, inverse_rows and replace
@@ -40,11 +56,22 @@ namespace lcprelax::detail {
 /// LU live in fixed-capacity storage of this size, so replacing a column never allocates.
 inline constexpr int kMaxSchurUpdates = 64;
 
-/// Columns of the Lemke tableau for M (CSC) and covering vector d.
+/// Columns of the Lemke tableau for M (CSC) and covering vector d, and (when lifted()) of
+/// the lifted basis matrix K above.
 struct LemkeColumns {
   const SparseMatrix* M = nullptr;
   const Vector* d = nullptr;
   Index n = 0;
+  // Lifted form (all null: none): Ĵ (n × m, CSC), Ĵᵀ (m × n, CSC), H (n × n, CSC), the
+  // diagonal d of D (size m, > 0) and the shift σ (read at every refactorization).
+  const SparseMatrix* J = nullptr;
+  const SparseMatrix* JT = nullptr;
+  const SparseMatrix* H = nullptr;
+  const Vector* dof_inverse_mass = nullptr;
+  const double* shift = nullptr;
+  bool lifted() const { return J != nullptr; }
+  /// Rows of the basis factorization: n + m when lifted, else n.
+  Index factor_size() const { return lifted() ? n + J->cols() : n; }
   /// Dense column of variable var into out (size n).
   void dense(Index var, Eigen::Ref<Vector> out) const;
   /// y += alpha · (column of var).
@@ -53,6 +80,13 @@ struct LemkeColumns {
   /// rows[0..c) and values[0..c), in increasing row order; returns c (at most nnz of
   /// M's column, 1 for w_i, n for z₀).
   Index write_column(Index var, int* rows, double* values) const;
+  /// K's column for variable var (lifted only): as write_column for w_i and z₀; for z_j the
+  /// entries of −(H + σI)(:, j), then those of −Ĵ(j, :) at rows n + k; increasing rows.
+  Index write_lifted_column(Index var, int* rows, double* values) const;
+  /// K's column n + k (lifted only): −Ĵ(:, k), then 1/d_k at row n + k.
+  Index write_dof_column(Index k, int* rows, double* values) const;
+  /// Entries bounding K's nonzeros for any basis (lifted only).
+  Index lifted_nonzeros_bound() const { return H->nonZeros() + 2 * J->nonZeros() + 3 * n + J->cols(); }
 };
 
 class LemkeBasis {

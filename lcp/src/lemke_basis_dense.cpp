@@ -7,51 +7,6 @@
 
 namespace lcprelax::detail {
 
-void LemkeColumns::dense(Index var, Eigen::Ref<Vector> out) const {
-  if (var < n) {
-    out.setZero();
-    out(var) = 1.0;
-  } else if (var < 2 * n) {
-    out.setZero();
-    for (SparseMatrix::InnerIterator it(*M, var - n); it; ++it) out(it.row()) = -it.value();
-  } else {
-    out = -*d;
-  }
-}
-
-void LemkeColumns::add_to(Index var, double alpha, Vector& y) const {
-  if (alpha == 0.0) return;
-  if (var < n) {
-    y(var) += alpha;
-  } else if (var < 2 * n) {
-    for (SparseMatrix::InnerIterator it(*M, var - n); it; ++it) y(it.row()) -= alpha * it.value();
-  } else {
-    y -= alpha * *d;
-  }
-}
-
-Index LemkeColumns::write_column(Index var, int* rows, double* values) const {
-  Index c = 0;
-  if (var < n) {
-    rows[0] = static_cast<int>(var);
-    values[0] = 1.0;
-    c = 1;
-  } else if (var < 2 * n) {
-    for (SparseMatrix::InnerIterator it(*M, var - n); it; ++it)
-      if (it.value() != 0.0) {
-        rows[c] = static_cast<int>(it.row());
-        values[c++] = -it.value();
-      }
-  } else {
-    for (Index i = 0; i < n; ++i) {
-      rows[i] = static_cast<int>(i);
-      values[i] = -(*d)(i);
-    }
-    c = n;
-  }
-  return c;
-}
-
 namespace {
 
 class DenseLemkeBasis final : public LemkeBasis {

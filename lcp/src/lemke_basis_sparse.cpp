@@ -23,6 +23,10 @@
 // construction; S and its LU have fixed capacity kMaxSchurUpdates², and the small blocks
 // of the Schur updates live on the stack, so only klu_analyze/klu_factor allocate, and
 // the storage of the factors' row-wise copy, reserved right after each factorization.
+// Lifted (lemke_basis.hpp): the factorization is of K, (n + m)-square, and every solve
+// pads its right-hand side with m zeros and keeps the first n entries of the solution
+// (aug_, sized at construction; solve_transposed and inverse_rows, outside the pivot
+// loop, use temporaries).
 #include "lemke_basis.hpp"
 
 #include <lcprelax/lcp/lemke.hpp>
@@ -55,8 +59,9 @@ class SparseLemkeBasis final : public LemkeBasis {
         klu_(shared ? shared->klu : own_klu_),
         slot_(static_cast<std::size_t>(columns.n), -1),
         W_(columns.n, max_updates_),
-        B0_(columns.n, columns.n),
-        pending_(columns.n) {
+        B0_(columns.factor_size(), columns.factor_size()),
+        pending_(columns.n),
+        aug_(columns.lifted() ? columns.factor_size() : 0) {
     pos_.reserve(static_cast<std::size_t>(max_updates_));
     rhs_index_.reserve(static_cast<std::size_t>(max_updates_) + 1);
     rhs_value_.reserve(static_cast<std::size_t>(max_updates_) + 1);
@@ -69,9 +74,9 @@ class SparseLemkeBasis final : public LemkeBasis {
     }
     col_index_.resize(static_cast<std::size_t>(columns.n));
     col_value_.resize(static_cast<std::size_t>(columns.n));
-    x_index_.reserve(static_cast<std::size_t>(columns.n));
-    x_value_.reserve(static_cast<std::size_t>(columns.n));
-    B0_.data().resize(columns.M->nonZeros() + 2 * columns.n);
+    x_index_.reserve(static_cast<std::size_t>(columns.factor_size()));
+    x_value_.reserve(static_cast<std::size_t>(columns.factor_size()));
+    B0_.data().resize(nonzeros_bound());
   }
 
   bool refactor(const std::vector<Index>& basic) override {
@@ -83,17 +88,24 @@ class SparseLemkeBasis final : public LemkeBasis {
     identity_ = true;
     for (Index k = 0; k < n && identity_; ++k) identity_ = basic[k] == k;
     if (identity_) return true;
-    // B₀ in CSC, written into B0_'s arrays (capacity nnz(M) + 2n bounds any basis).
-    B0_.data().resize(cols_.M->nonZeros() + 2 * n);
+    // B₀ (or K) in CSC, written into B0_'s arrays (nonzeros_bound() bounds any basis).
+    B0_.data().resize(nonzeros_bound());
     int* outer = B0_.outerIndexPtr();
     int* inner = B0_.innerIndexPtr();
     double* values = B0_.valuePtr();
+    const bool lifted = cols_.lifted();
+    const Index size = cols_.factor_size();
     Index p = 0;
     for (Index k = 0; k < n; ++k) {
       outer[k] = static_cast<int>(p);
-      p += cols_.write_column(basic[k], inner + p, values + p);
+      p += lifted ? cols_.write_lifted_column(basic[k], inner + p, values + p)
+                  : cols_.write_column(basic[k], inner + p, values + p);
     }
-    outer[n] = static_cast<int>(p);
+    for (Index k = n; k < size; ++k) {
+      outer[k] = static_cast<int>(p);
+      p += cols_.write_dof_column(k - n, inner + p, values + p);
+    }
+    outer[size] = static_cast<int>(p);
     B0_.data().resize(p);
     // A shared factorization (LemkeSharedFactorization) may hold the analysis of this
     // pattern, and then also a numeric factorization of it: of the basis a simulator's
@@ -134,15 +146,19 @@ class SparseLemkeBasis final : public LemkeBasis {
       b0_solve(pending_);
     } else if (column_density_ >= kHypersparseDensity) {
       const Index c = cols_.write_column(var, col_index_.data(), col_value_.data());
-      const Index nonzeros = columns_.solve_dense(static_cast<int>(c), col_index_.data(), col_value_.data(), pending_);
-      column_density_ = 0.9 * column_density_ + 0.1 * static_cast<double>(nonzeros) / static_cast<double>(cols_.n);
+      const bool lifted = cols_.lifted();
+      const Index nonzeros =
+          columns_.solve_dense(static_cast<int>(c), col_index_.data(), col_value_.data(), lifted ? aug_ : pending_);
+      if (lifted) pending_ = aug_.head(cols_.n);
+      column_density_ = 0.9 * column_density_ + 0.1 * static_cast<double>(nonzeros) / static_cast<double>(aug_rows());
     } else {
       const Index c = cols_.write_column(var, col_index_.data(), col_value_.data());
       columns_.solve(static_cast<int>(c), col_index_.data(), col_value_.data(), x_index_, x_value_);
       pending_.setZero();
-      for (std::size_t k = 0; k < x_index_.size(); ++k) pending_(x_index_[k]) = x_value_[k];
+      for (std::size_t k = 0; k < x_index_.size(); ++k)
+        if (x_index_[k] < cols_.n) pending_(x_index_[k]) = x_value_[k];  // K's momentum rows dropped
       column_density_ =
-          0.9 * column_density_ + 0.1 * static_cast<double>(x_index_.size()) / static_cast<double>(cols_.n);
+          0.9 * column_density_ + 0.1 * static_cast<double>(x_index_.size()) / static_cast<double>(aug_rows());
     }
     a = pending_;
     correct(a);
@@ -162,7 +178,15 @@ class SparseLemkeBasis final : public LemkeBasis {
       const SchurVector t = s_lu_.transpose().solve(s);
       for (Index j = 0; j < k; ++j) x(pos_[j]) -= t(j);
     }
-    if (!identity_) klu_.solve_transposed(x);
+    if (identity_) return;
+    if (!cols_.lifted()) {
+      klu_.solve_transposed(x);
+      return;
+    }
+    Vector padded = Vector::Zero(cols_.factor_size());  // allocates: backward() only
+    padded.head(cols_.n) = x;
+    klu_.solve_transposed(padded);
+    x = padded.head(cols_.n);
   }
 
   // B⁻ᵀ E_rows as above, with (W − E_P)ᵀ E_rows read off W's rows (no product); the
@@ -179,7 +203,15 @@ class SparseLemkeBasis final : public LemkeBasis {
       const SchurBlock t = s_lu_.transpose().solve(s);
       for (Index j = 0; j < k; ++j) out.row(pos_[j]).segment(c0, w) -= t.row(j);
     }
-    if (!identity_) klu_.solve_transposed(out);
+    if (identity_) return;
+    if (!cols_.lifted()) {
+      klu_.solve_transposed(out);
+      return;
+    }
+    DenseMatrix padded = DenseMatrix::Zero(cols_.factor_size(), m);  // full tie rows: the reference path
+    padded.topRows(cols_.n) = out;
+    klu_.solve_transposed(padded);
+    out = padded.topRows(cols_.n);
   }
 
   // Row r of B⁻¹ = (B⁻ᵀe_r)ᵀ with B⁻ᵀe_r = B₀⁻ᵀ(e_r − E_P t), t = S⁻ᵀ(W − E_P)ᵀe_r (as in
@@ -210,6 +242,15 @@ class SparseLemkeBasis final : public LemkeBasis {
     }
     if (!rows_.built() && !rows_.build(klu_)) return dense_row(r, index, value);
     rows_.solve(static_cast<int>(rhs_index_.size()), rhs_index_.data(), rhs_value_.data(), index, value);
+    if (!cols_.lifted()) return;
+    std::size_t kept = 0;  // K's momentum columns dropped, in place
+    for (std::size_t e = 0; e < index.size(); ++e)
+      if (index[e] < cols_.n) {
+        index[kept] = index[e];
+        value[kept++] = value[e];
+      }
+    index.resize(kept);
+    value.resize(kept);
   }
 
   bool replace(Index r, const Vector& /*a*/) override {
@@ -250,9 +291,23 @@ class SparseLemkeBasis final : public LemkeBasis {
 
  private:
   // X ← B₀⁻¹ X.
-  void b0_solve(Vector& x) const {
-    if (!identity_) klu_.solve(x);
+  void b0_solve(Vector& x) {
+    if (identity_) return;
+    if (!cols_.lifted()) {
+      klu_.solve(x);
+      return;
+    }
+    aug_.head(cols_.n) = x;
+    aug_.tail(aug_.size() - cols_.n).setZero();
+    klu_.solve(aug_);
+    x = aug_.head(cols_.n);
   }
+
+  // Entries of the CSC arrays that any basis' B₀ (or K) fits in.
+  Index nonzeros_bound() const {
+    return cols_.lifted() ? cols_.lifted_nonzeros_bound() : cols_.M->nonZeros() + 2 * cols_.n;
+  }
+  Index aug_rows() const { return cols_.factor_size(); }
 
   // Fallback of inverse_row_nonzeros (factors not extractable): a dense transposed solve.
   void dense_row(Index r, std::vector<int>& index, std::vector<double>& value) {
@@ -314,6 +369,7 @@ class SparseLemkeBasis final : public LemkeBasis {
   Eigen::PartialPivLU<SchurMatrix> s_lu_;
   SparseMatrix B0_;         // B₀ (CSC), input of KLU
   Vector pending_;          // B₀⁻¹ c of the last solve_column
+  Vector aug_;              // lifted: a solve's (n + m) right-hand side and solution
   sparse::HypersparseTransposedSolver rows_;   // rows of B₀⁻¹ (built on first use)
   std::vector<int> rhs_index_;                 // right-hand side of a row of B⁻¹
   std::vector<double> rhs_value_;

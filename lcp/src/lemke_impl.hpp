@@ -35,6 +35,12 @@ struct LemkeSolver::Impl {
   LcpResult result;
   std::vector<Index> basic;  // variable per row: [0,n) w, [n,2n) z, 2n z0
   std::unique_ptr<detail::LemkeBasis> basis;
+  // Lifted form of M (setup's LcpLiftedForm): J, Jᵀ, H, d; lifted_shift is the εI of a
+  // regularization retry (the basis adds it to H's diagonal).
+  bool has_lifted = false;
+  SparseMatrix lifted_J, lifted_JT, lifted_H;
+  Vector lifted_d;
+  double lifted_shift = 0.0;
   std::shared_ptr<LemkeSharedFactorization> shared_lu;  // share_factorization(); nullptr: none
   void (*refactor_hook)(bool) = nullptr;
   std::vector<Index>* pivot_trace = nullptr;  // set_pivot_trace
@@ -63,6 +69,7 @@ struct LemkeSolver::Impl {
   static Index complement(Index var, Index n) { return var < n ? var + n : var - n; }
 
   // lemke.cpp
+  void setup(const SparseMatrix& M, const Vector& q);
   void set_q(const Vector& q_in);
   void allocate();
   void new_basis();

@@ -90,7 +90,8 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   // Solve: the lcp model's attempts (models/lcp_model_attempts.hpp), as the simulator does.
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   LcpModelAttempts attempts;
-  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts, skip_exact_cold);
+  const LcpLiftedForm lifted = stewart_trinkle_lifted_form(s, dt);
+  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts, skip_exact_cold, {}, false, &lifted);
   r.work = attempts.pivots;
   const LemkeSolver* sol = attempts.used;
   if (!has_solution(attempts.status)) {

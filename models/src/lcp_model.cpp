@@ -125,6 +125,33 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
   return lcp;
 }
 
+// J's columns written directly in CSC: per velocity column, the Jn rows, then the Jt rows at
+// nc + f and negated at nc + nf + f (increasing rows); H is the matrix stewart_trinkle_lcp
+// assembles from a zero W (its compliance, μ, ±1 and lcp_block entries).
+LcpLiftedForm stewart_trinkle_lifted_form(const ContactSystem& s, double dt) {
+  const Index nc = s.num_contacts(), nf = s.num_friction(), n = nc + 3 * nf, m = s.num_dofs();
+  if (s.Jn.rows() != nc || s.Jt.rows() != nf || s.Jn.cols() != m || s.Jt.cols() != m || s.minv.size() != m)
+    throw InputError("stewart_trinkle_lifted_form: Jn, Jt and minv do not match the contacts, friction rows and 3·bodies");
+  LcpLiftedForm f;
+  f.H = stewart_trinkle_lcp(s, SparseMatrix(nc + nf, nc + nf), dt).M;
+  f.d = s.minv;
+  f.J.resize(n, m);
+  f.J.resizeNonZeros(s.Jn.nonZeros() + 2 * s.Jt.nonZeros());
+  int* outer = f.J.outerIndexPtr();
+  int* inner = f.J.innerIndexPtr();
+  double* values = f.J.valuePtr();
+  int p = 0;
+  for (Index k = 0; k < m; ++k) {
+    outer[k] = p;
+    for (SparseMatrix::InnerIterator it(s.Jn, k); it; ++it) inner[p] = static_cast<int>(it.row()), values[p++] = it.value();
+    for (const double sign : {1.0, -1.0})
+      for (SparseMatrix::InnerIterator it(s.Jt, k); it; ++it)
+        inner[p] = static_cast<int>((sign > 0 ? nc : nc + nf) + it.row()), values[p++] = sign * it.value();
+  }
+  outer[m] = p;
+  return f;
+}
+
 std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   std::vector<Index> idx(static_cast<std::size_t>(4 * nc), -1);
@@ -178,8 +205,10 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
                                 bool accept_perturbed) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
+  const LcpLiftedForm lifted = stewart_trinkle_lifted_form(s, dt);
   LcpModelAttempts a;
-  run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization, accept_perturbed);
+  run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization, accept_perturbed,
+                         &lifted);
   const LcpResult& r = a.used->result();
   ContactSolution out;
   out.status = a.status;

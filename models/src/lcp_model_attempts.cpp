@@ -42,7 +42,7 @@ double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
-                            bool accept_perturbed) {
+                            bool accept_perturbed, const LcpLiftedForm* lifted) {
   out.solvers.clear();
   out.used = nullptr;
   out.source = LcpModelSource::exact;
@@ -85,13 +85,15 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   const LemkeSolver* r = nullptr;
   // `lu`: the factorization to factorize in (step 1's warm_factorization), or none.
   // `trace`: the first trace_pivots pivots are recorded there (step 1b's restarts).
-  auto attempt_on = [&](const SparseMatrix& M, const LemkeSettings& ls, const Vector& q,
+  // `form`: M's lifted form (null: none).
+  auto attempt_on = [&](const SparseMatrix& M, const LcpLiftedForm* form, const LemkeSettings& ls, const Vector& q,
                         const std::vector<bool>* basis, const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr,
                         std::vector<Index>* trace = nullptr, long trace_pivots = -1) -> const LemkeSolver& {
     LemkeSolver& solver = out.solvers.emplace_back(ls);
     if (lu) solver.share_factorization(lu);
     if (trace) solver.set_pivot_trace(trace, trace_pivots);
-    solver.setup(M, q);
+    if (form) solver.setup(M, q, *form);
+    else solver.setup(M, q);
     if (basis) solver.warm_start(*basis);
     out.pivots += solver.solve().info.pivots;
     return solver;
@@ -99,7 +101,7 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis,
                      const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr, std::vector<Index>* trace = nullptr,
                      long trace_pivots = -1) -> const LemkeSolver& {
-    return attempt_on(lcp.M, ls, q, basis, lu, trace, trace_pivots);
+    return attempt_on(lcp.M, lifted, ls, q, basis, lu, trace, trace_pivots);
   };
   auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
   auto perturbed = [&](double delta, int seed) { return Vector(lcp.q + delta * pattern(seed)); };
@@ -178,10 +180,15 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     I.setIdentity();
     const double m_norm = (lcp.M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
     Me += (kLcpRegularization * std::max(1.0, m_norm)) * I;
+    LcpLiftedForm lifted_e;
+    if (lifted) {
+      lifted_e = *lifted;
+      lifted_e.H += (kLcpRegularization * std::max(1.0, m_norm)) * I;
+    }
     LemkeSettings reg = plain;
     const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
     reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
-    const LemkeSolver& rr = attempt_on(Me, reg, lcp.q, nullptr);
+    const LemkeSolver& rr = attempt_on(Me, lifted ? &lifted_e : nullptr, reg, lcp.q, nullptr);
     if (solved(&rr)) {
       polish_on_q(rr, -1);  // sets r when the polish solves (M, q)
       if (!solved(r) &&

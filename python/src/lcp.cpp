@@ -29,6 +29,7 @@ const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
       double_field("lu_pivot_tolerance", &S::lu_pivot_tolerance),
       bool_field("sparse_tie_rows", &S::sparse_tie_rows),
       bool_field("sparse_columns", &S::sparse_columns),
+      bool_field("lifted_basis", &S::lifted_basis),
       int_field("covering_retries", &S::covering_retries),
       int_field("regularization_retries", &S::regularization_retries),
       double_field("regularization", &S::regularization),
@@ -67,14 +68,25 @@ class PyLemkeSolver {
  public:
   explicit PyLemkeSolver(const LemkeSettings& s) : settings_(s), solver_(s) {}
 
-  void setup(const py::object& M, const py::object& q) {
+  // lifted: None, or (J, d, H) with M = J diag(d) Jᵀ + H (lcp_types.hpp LcpLiftedForm).
+  void setup(const py::object& M, const py::object& q, const py::object& lifted) {
     const SparseMatrix Ms = to_sparse(M, "M");
     if (Ms.rows() != Ms.cols())
       throw InputError("M is " + std::to_string(Ms.rows()) + "x" + std::to_string(Ms.cols()) + ", must be square");
     const Vector qv = to_vector(q, "q", static_cast<Index>(Ms.rows()), "rows of M");
+    LcpLiftedForm form;
+    const bool has_form = !lifted.is_none();
+    if (has_form) {
+      const py::tuple t = py::cast<py::tuple>(lifted);
+      if (t.size() != 3) throw InputError("lifted must be a tuple (J, d, H)");
+      form.J = to_sparse(t[0], "J");
+      form.d = to_vector(t[1], "d", static_cast<Index>(form.J.cols()), "columns of J");
+      form.H = to_sparse(t[2], "H");
+    }
     Busy busy(mutex_, "LemkeSolver");
     py::gil_scoped_release nogil;
-    solver_.setup(Ms, qv);
+    if (has_form) solver_.setup(Ms, qv, form);
+    else solver_.setup(Ms, qv);
     n_ = static_cast<Index>(qv.size());
   }
 
@@ -190,8 +202,10 @@ void bind_lcp(py::module_& m) {
              return std::make_unique<PyLemkeSolver>(s);
            }),
            "LemkeSolver(**settings): keyword arguments named as the LemkeSettings fields")
-      .def("setup", &PyLemkeSolver::setup, py::arg("M"), py::arg("q"),
-           "Validates the LCP w = Mz + q, 0 <= z _|_ w >= 0 (M: n x n scipy.sparse; q: 1-D float array)")
+      .def("setup", &PyLemkeSolver::setup, py::arg("M"), py::arg("q"), py::arg("lifted") = py::none(),
+           "Validates the LCP w = Mz + q, 0 <= z _|_ w >= 0 (M: n x n scipy.sparse; q: 1-D float array); "
+           "lifted: None or (J, d, H) with M = J diag(d) J^T + H (J: n x m scipy.sparse, d: m positive "
+           "floats, H: n x n scipy.sparse), which the sparse basis factorizes instead of M's columns")
       .def("update_q", &PyLemkeSolver::update_q, py::arg("q"), "new q of the same size, M kept")
       .def("warm_start", &PyLemkeSolver::warm_start, py::arg("z_basic"), "basis to try first (bool array, n)")
       .def("warm_start_point", &PyLemkeSolver::warm_start_point, py::arg("z"), py::arg("fallback") = py::none(),

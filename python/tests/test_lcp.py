@@ -145,3 +145,33 @@ def test_siconos_lcp_file_solved(data_dir):
     r = solver.solve()
     assert r.status == "solved"
     check_complementary(data["M"].toarray(), data["q"], r)
+
+
+def test_lifted_form_gives_the_plain_solution_and_rejects_a_wrong_one():
+    # M = J diag(d) J^T + H with a positive definite H: the sparse basis factorizes K (the
+    # momentum rows kept) and must end where the plain basis does.
+    rng = np.random.default_rng(4)
+    n, m = 40, 12
+    J = sp.random(n, m, density=0.2, random_state=5, format="csc")
+    d = rng.uniform(0.5, 2.0, m)
+    H = sp.diags(rng.uniform(0.1, 1.0, n)).tocsc()
+    Mm = (J @ sp.diags(d) @ J.T + H).tocsc()
+    q = rng.uniform(-1.0, 1.0, n)
+    results = []
+    for lifted in (None, (J, d, H)):
+        s = lcprelax.LemkeSolver(method="sparse", refactor_interval=5)
+        s.setup(Mm, q, lifted=lifted)
+        r = s.solve()
+        assert r.status == "solved", r.message
+        check_complementary(Mm.toarray(), q, r)
+        results.append((r.z.copy(), r.pivots))
+    assert results[0][1] == results[1][1]
+    assert np.allclose(results[0][0], results[1][0], rtol=1e-9, atol=1e-12)
+    s = lcprelax.LemkeSolver(method="sparse")
+    with pytest.raises(lcprelax.InputError, match="differs from M"):
+        s.setup(Mm, q, lifted=(J, d, H * 2.0))
+    with pytest.raises(lcprelax.InputError, match="d > 0"):
+        s.setup(Mm, q, lifted=(J, -d, H))
+    with pytest.raises(lcprelax.InputError, match="tuple"):
+        s.setup(Mm, q, lifted=(J, d))
+    assert lcprelax.LemkeSolver(lifted_basis=False).settings["lifted_basis"] is False

@@ -97,6 +97,11 @@ class LemkeSolver {
 
   /// Validates (square M, sizes, finite values, covering > 0; throws InputError).
   void setup(const SparseMatrix& M, const Vector& q);
+  /// As above, with M's lifted form M = J diag(d) Jᵀ + H (lcp_types.hpp LcpLiftedForm),
+  /// used by the sparse basis' factorizations (LemkeSettings::lifted_basis); throws
+  /// InputError on sizes that do not match, non-finite entries, d ≤ 0, or a form that
+  /// does not equal M (two probe vectors, relative 1e-8). A later setup(M, q) drops it.
+  void setup(const SparseMatrix& M, const Vector& q, const LcpLiftedForm& lifted);
   /// New q (same n), keeping M.
   void update_q(const Vector& q);
   /// Basis to try first in the next solve() (size n; true = z_i basic).

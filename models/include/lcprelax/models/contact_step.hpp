@@ -235,6 +235,12 @@ struct StewartTrinkleLcp {
 /// to every contact's own block when enabled (world.hpp ContactLcpBlock).
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt);
 
+/// The lifted form of stewart_trinkle_lcp(s, delassus(s), dt)'s M (lcp_types.hpp
+/// LcpLiftedForm, for Lemke's sparse basis): M = J diag(minv) Jᵀ + H with J's rows
+/// [Jn; Jt; −Jt; 0] in the LCP's row order and H the compliance, μ, ±1 and lcp_block
+/// entries. Throws InputError when the Jacobians do not match s's sizes.
+LcpLiftedForm stewart_trinkle_lifted_form(const ContactSystem& s, double dt);
+
 /// Each contact's indices in the LCP's z = [λn (nc), β⁺, β⁻, γ (nf each)]: 4 per contact in the
 /// order λn, β⁺, β⁻, γ, with −1 for the last three of a contact without a friction row.
 std::vector<Index> stewart_trinkle_contact_indices(const ContactSystem& s);

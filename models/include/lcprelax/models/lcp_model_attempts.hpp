@@ -51,10 +51,12 @@ struct LcpModelAttempts {
 /// as with skip_exact_cold when step 2 gave a perturbed answer: for a caller whose
 /// previous LCP of this island ended perturbed after those had failed (a jammed pile at
 /// rest; contact_step.hpp kLcpExactRetrySteps).
+/// `lifted`: lcp.M's lifted form (stewart_trinkle_lifted_form), given to every attempt's
+/// LemkeSolver (the M + εI of step 4 with εI added to its H); nullptr: none.
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
-                            bool accept_perturbed = false);
+                            bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr);
 
 /// Takes back, in the warm basis `warm` (z_basic of the LCP z = [λn, β⁺, β⁻, γ] of s, size
 /// n = nc + 3nf), the contacts that a crash path ending on a ray touched: every contact

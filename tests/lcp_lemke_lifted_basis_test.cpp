@@ -1,0 +1,308 @@
+// The lifted basis of the sparse Lemke method (LcpLiftedForm, LemkeSettings::lifted_basis;
+// lcp/src/lemke_basis.hpp): the basis factorization holds the momentum equations instead of
+// the Delassus products, and everything else reads M, so
+// - on the Stewart–Trinkle LCPs of a dropping polygon pile (stewart_trinkle_lifted_form),
+//   a solver accepts the form and Lemke with it solves where the plain basis does, with the
+//   LCP's residual within tolerance. These LCPs are degenerate (redundant contacts), so
+//   roundoff may break ties differently and the two paths end at different solutions;
+//   the plain basis started from the lifted one's final basis confirms it in 0 pivots
+//   with the same z (1e-9 relative), and so does a lifted solver;
+// - backward() (a transposed solve through K) gives the plain basis' ∂ℓ/∂q at the same
+//   basis, and central differences of ℓ(q) = Σ z confirm it on a random positive definite
+//   LCP of that form with a strictly complementary solution (the basis holds under the
+//   perturbation);
+// - on random LCPs M = J diag(d) Jᵀ + H with H of the Stewart–Trinkle kind (μ, ±1 slack
+//   couplings, a diagonal compliance) and a known solution, sizes 12–300, lifted and plain
+//   take the same path (same status and pivots) to the same z;
+// - a regularized retry (M + εI: the basis adds ε to H's diagonal) solves with the lifted
+//   basis as with the plain one;
+// - forms that do not describe M get an InputError naming the problem.
+#include <lcprelax/contact/collision.hpp>
+#include <lcprelax/core/errors.hpp>
+#include <lcprelax/lcp/lemke.hpp>
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/simulator.hpp>
+
+#include "dynamics_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace lcprelax {
+namespace {
+
+struct PileLcp {
+  StewartTrinkleLcp lcp;
+  LcpLiftedForm lifted;
+};
+
+// The LCPs of the largest islands of a 40-body pile dropped for `steps` steps.
+PileLcp pile_lcp(int steps) {
+  Simulator sim = test::pile_simulator(40, 2, ContactModel::lcp);
+  for (int k = 0; k < steps; ++k) sim.step();
+  const World& world = sim.world();
+  const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{});
+  const std::vector<Island> islands = find_islands(world, contacts);
+  EXPECT_FALSE(islands.empty());
+  const Island& island = *std::max_element(islands.begin(), islands.end(), [](const Island& a, const Island& b) {
+    return a.contacts.size() < b.contacts.size();
+  });
+  const double dt = sim.settings().dt;
+  const ContactSystem s = assemble_contact_system(world, contacts, island, dt);
+  return {stewart_trinkle_lcp(s, delassus(s), dt), stewart_trinkle_lifted_form(s, dt)};
+}
+
+LemkeSettings sparse_settings(bool lifted) {
+  LemkeSettings st;
+  st.method = LemkeMethod::sparse;
+  st.lifted_basis = lifted;
+  st.refactor_interval = 20;  // several refactorizations of K per solve
+  return st;
+}
+
+double relative_difference(const Vector& a, const Vector& b) {
+  return (a - b).lpNorm<Eigen::Infinity>() / std::max(1e-300, a.lpNorm<Eigen::Infinity>());
+}
+
+TEST(LemkeLiftedBasis, PileLcpsTakeThePlainPathToTheSameSolution) {
+  int solved = 0;
+  for (int steps : {60, 90, 120}) {
+    const PileLcp p = pile_lcp(steps);
+    const Index n = p.lcp.M.rows();
+    ASSERT_GT(n, 100);
+    LemkeSolver plain(sparse_settings(false)), lifted(sparse_settings(true));
+    plain.setup(p.lcp.M, p.lcp.q);
+    lifted.setup(p.lcp.M, p.lcp.q, p.lifted);
+    const LcpResult& a = plain.solve();
+    const LcpResult& b = lifted.solve();
+    if (a.info.status != LcpStatus::solved) continue;
+    ASSERT_EQ(b.info.status, LcpStatus::solved) << "steps " << steps << ": " << b.info.message;
+    ++solved;
+    EXPECT_GT(b.info.refactorizations, 1);
+    const double tol = 1e-9 * std::max(1.0, p.lcp.q.lpNorm<Eigen::Infinity>());
+    EXPECT_LE(b.info.complementarity, tol);
+    const Vector w = p.lcp.M * b.z + p.lcp.q;
+    EXPECT_GE(w.minCoeff(), -tol);
+    EXPECT_GE(b.z.minCoeff(), 0.0);
+    for (bool lifted_again : {false, true}) {
+      LemkeSolver again(sparse_settings(lifted_again));
+      if (lifted_again) again.setup(p.lcp.M, p.lcp.q, p.lifted);
+      else again.setup(p.lcp.M, p.lcp.q);
+      again.warm_start(b.z_basic);
+      const LcpResult& c = again.solve();
+      EXPECT_EQ(c.info.status, LcpStatus::solved);
+      EXPECT_EQ(c.info.pivots, 0);
+      EXPECT_LE(relative_difference(b.z, c.z), 1e-9) << "steps " << steps << " lifted " << lifted_again;
+    }
+  }
+  EXPECT_GE(solved, 2);
+}
+
+TEST(LemkeLiftedBasis, BackwardMatchesThePlainBasisOnAPile) {
+  const PileLcp p = pile_lcp(90);
+  LemkeSolver first(sparse_settings(true));
+  first.setup(p.lcp.M, p.lcp.q, p.lifted);
+  const LcpResult& r = first.solve();
+  ASSERT_EQ(r.info.status, LcpStatus::solved);
+  // Both from the same (final) basis: the derivative is that basis' (lemke.hpp).
+  LemkeSolver plain(sparse_settings(false)), lifted(sparse_settings(true));
+  plain.setup(p.lcp.M, p.lcp.q);
+  lifted.setup(p.lcp.M, p.lcp.q, p.lifted);
+  plain.warm_start(r.z_basic);
+  lifted.warm_start(r.z_basic);
+  ASSERT_EQ(plain.solve().info.pivots, 0);
+  ASSERT_EQ(lifted.solve().info.pivots, 0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector g(p.lcp.M.rows());
+  for (Index i = 0; i < g.size(); ++i) g(i) = u(rng);
+  const LcpGradient ga = plain.backward(g), gb = lifted.backward(g);
+  EXPECT_LE(relative_difference(ga.dq, gb.dq), 1e-8);
+  SparseMatrix diff = ga.dM - gb.dM;
+  double dmax = 0, amax = 0;
+  for (Index k = 0; k < diff.nonZeros(); ++k) dmax = std::max(dmax, std::abs(diff.valuePtr()[k]));
+  for (Index k = 0; k < ga.dM.nonZeros(); ++k) amax = std::max(amax, std::abs(ga.dM.valuePtr()[k]));
+  EXPECT_LE(dmax, 1e-8 * amax);
+}
+
+PileLcp random_lcp(std::mt19937& rng, Index nc, Index bodies, bool friction_coupling = true);
+
+TEST(LemkeLiftedBasis, BackwardAgreesWithFiniteDifferences) {
+  // M positive definite (H diagonal): a unique, strictly complementary solution.
+  std::mt19937 rng(13);
+  const PileLcp p = random_lcp(rng, 30, 12, /*friction_coupling=*/false);
+  LemkeSolver lifted(sparse_settings(true));
+  lifted.setup(p.lcp.M, p.lcp.q, p.lifted);
+  const LcpResult& r = lifted.solve();
+  ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
+  const Index n = p.lcp.M.rows();
+  const LcpGradient gb = lifted.backward(Vector::Ones(n));
+  // ℓ(q) = Σ z: central differences along a few directions, each solve warm-started from
+  // the final basis (the derivative is the one of that basis).
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double h = 1e-7 * std::max(1.0, p.lcp.q.lpNorm<Eigen::Infinity>());
+  for (int k = 0; k < 3; ++k) {
+    Vector dir(n);
+    for (Index i = 0; i < n; ++i) dir(i) = u(rng);
+    double sum[2];
+    for (int side = 0; side < 2; ++side) {
+      LemkeSolver s(sparse_settings(true));
+      s.setup(p.lcp.M, p.lcp.q + (side == 0 ? h : -h) * dir, p.lifted);
+      s.warm_start(r.z_basic);
+      const LcpResult& rs = s.solve();
+      ASSERT_EQ(rs.info.status, LcpStatus::solved);
+      ASSERT_EQ(rs.info.pivots, 0);  // the same basis
+      sum[side] = rs.z.sum();
+    }
+    const double fd = (sum[0] - sum[1]) / (2 * h), an = gb.dq.dot(dir);
+    EXPECT_NEAR(fd, an, 1e-6 * std::max(1.0, std::abs(an))) << "direction " << k;
+  }
+}
+
+// M = J diag(d) Jᵀ + H on nc "contacts" of one normal, two friction and one slack row each
+// (the Stewart–Trinkle layout [λn, β⁺, β⁻, γ]), m = 3·bodies velocities; J's rows touch two
+// random bodies. q = w* − M z* for a strictly complementary pair (z*, w*) ≥ 0: a solution
+// exists and, nondegenerate, stays basic under small changes of q.
+PileLcp random_lcp(std::mt19937& rng, Index nc, Index bodies, bool friction_coupling) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.1, 1.0);
+  std::uniform_int_distribution<Index> body(0, bodies - 1);
+  const Index n = 4 * nc, m = 3 * bodies;
+  std::vector<Triplet> tj, th;
+  for (Index c = 0; c < nc; ++c) {
+    const Index a = body(rng);
+    Index b = body(rng);
+    if (b == a) b = (a + 1) % bodies;
+    for (int k = 0; k < 3; ++k) {
+      tj.emplace_back(c, 3 * a + k, u(rng));
+      tj.emplace_back(c, 3 * b + k, u(rng));
+      const double t0 = u(rng), t1 = u(rng);
+      tj.emplace_back(nc + c, 3 * a + k, t0);
+      tj.emplace_back(nc + c, 3 * b + k, t1);
+      tj.emplace_back(2 * nc + c, 3 * a + k, -t0);
+      tj.emplace_back(2 * nc + c, 3 * b + k, -t1);
+    }
+    th.emplace_back(c, c, 1e-3 * pos(rng));  // compliance
+    if (!friction_coupling) {  // a positive diagonal instead: M positive definite
+      for (Index r : {nc + c, 2 * nc + c, 3 * nc + c}) th.emplace_back(r, r, pos(rng));
+      continue;
+    }
+    th.emplace_back(3 * nc + c, c, 0.5 * pos(rng));  // μ
+    for (Index f : {nc + c, 2 * nc + c}) {
+      th.emplace_back(f, 3 * nc + c, 1.0);
+      th.emplace_back(3 * nc + c, f, -1.0);
+    }
+  }
+  PileLcp p;
+  p.lifted.J.resize(n, m);
+  p.lifted.J.setFromTriplets(tj.begin(), tj.end());
+  p.lifted.H.resize(n, n);
+  p.lifted.H.setFromTriplets(th.begin(), th.end());
+  p.lifted.d.resize(m);
+  for (Index k = 0; k < m; ++k) p.lifted.d(k) = pos(rng);
+  const SparseMatrix D = SparseMatrix(p.lifted.d.asDiagonal());
+  p.lcp.M = SparseMatrix(p.lifted.J * D * p.lifted.J.transpose()) + p.lifted.H;
+  Vector z = Vector::Zero(n), w = Vector::Zero(n);
+  for (Index i = 0; i < n; ++i) (u(rng) > 0 ? z(i) : w(i)) = pos(rng);
+  p.lcp.q = w - p.lcp.M * z;
+  return p;
+}
+
+TEST(LemkeLiftedBasis, RandomContactLcpsEndAlike) {
+  std::mt19937 rng(11);
+  int solved = 0, cases = 0;
+  for (Index nc : {3, 10, 30, 75}) {
+    for (Index bodies : {nc / 3 + 1, nc + 2}) {
+      const PileLcp p = random_lcp(rng, nc, bodies);
+      LemkeSolver plain(sparse_settings(false)), lifted(sparse_settings(true));
+      plain.setup(p.lcp.M, p.lcp.q);
+      lifted.setup(p.lcp.M, p.lcp.q, p.lifted);
+      const LcpResult& a = plain.solve();
+      const LcpResult& b = lifted.solve();
+      ++cases;
+      ASSERT_EQ(a.info.status, b.info.status) << "nc " << nc << " bodies " << bodies;
+      EXPECT_EQ(a.info.pivots, b.info.pivots) << "nc " << nc << " bodies " << bodies;
+      if (a.info.status != LcpStatus::solved) continue;
+      ++solved;
+      EXPECT_LE(relative_difference(a.z, b.z), 1e-8) << "nc " << nc << " bodies " << bodies;
+      EXPECT_LE(b.info.complementarity, 1e-9 * std::max(1.0, p.lcp.q.lpNorm<Eigen::Infinity>()));
+    }
+  }
+  EXPECT_GE(solved, cases / 2);  // the others end on a ray both ways (copositive, not copositive-plus M)
+}
+
+TEST(LemkeLiftedBasis, RegularizedRetryShiftsTheLiftedH) {
+  // M shifted by −1e-3·I: Lemke's first path ends on a ray on most of these; the retries on
+  // M + εI (ε 5% of ‖M‖∞, K refactorized every 3 pivots) run with the shift in K. Lifted
+  // and plain agree in status, message and pivots (without the shift in K they do not:
+  // 53 against 78 pivots on the first case), and in z when a retry solves.
+  std::mt19937 rng(3);
+  int retried = 0;
+  for (int k = 0; k < 6; ++k) {
+    PileLcp p = random_lcp(rng, 6, 3);
+    SparseMatrix I(p.lcp.M.rows(), p.lcp.M.rows());
+    I.setIdentity();
+    p.lifted.H = SparseMatrix(p.lifted.H - 1e-3 * I);
+    p.lcp.M = SparseMatrix(p.lcp.M - 1e-3 * I);
+    LemkeSettings st = sparse_settings(false);
+    st.covering_retries = 0;
+    st.regularization_retries = 2;
+    st.regularization = 0.05;
+    st.refactor_interval = 3;  // K factorized (with its shift) every 3 pivots
+    LemkeSolver plain(st);
+    st.lifted_basis = true;
+    LemkeSolver lifted(st);
+    plain.setup(p.lcp.M, p.lcp.q);
+    lifted.setup(p.lcp.M, p.lcp.q, p.lifted);
+    const LcpResult& a = plain.solve();
+    const LcpResult& b = lifted.solve();
+    EXPECT_EQ(a.info.status, b.info.status);
+    EXPECT_EQ(a.info.message, b.info.message);
+    EXPECT_EQ(a.info.pivots, b.info.pivots);
+    if (a.info.message.find("retr") != std::string::npos) ++retried;
+    if (a.info.status == LcpStatus::solved) {
+      EXPECT_LE(relative_difference(a.z, b.z), 1e-8);
+    }
+  }
+  EXPECT_GT(retried, 0);
+}
+
+TEST(LemkeLiftedBasis, FormsThatDoNotDescribeMAreRejected) {
+  std::mt19937 rng(5);
+  const PileLcp p = random_lcp(rng, 4, 3);
+  LemkeSolver s(sparse_settings(true));
+  auto message = [&](const LcpLiftedForm& f) {
+    try {
+      s.setup(p.lcp.M, p.lcp.q, f);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(p.lifted), "no error");
+  LcpLiftedForm wrong = p.lifted;
+  wrong.H.coeffRef(0, 0) += 1.0;
+  EXPECT_NE(message(wrong).find("differs from M"), std::string::npos);
+  wrong = p.lifted;
+  wrong.d(0) = -1.0;
+  EXPECT_NE(message(wrong).find("d > 0"), std::string::npos);
+  wrong = p.lifted;
+  wrong.d(1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(message(wrong).find("NaN"), std::string::npos);
+  wrong = p.lifted;
+  wrong.d.conservativeResize(wrong.d.size() - 1);
+  EXPECT_NE(message(wrong).find("lifted form has J"), std::string::npos);
+  wrong = p.lifted;
+  wrong.H.conservativeResize(3, 3);
+  EXPECT_NE(message(wrong).find("lifted form has J"), std::string::npos);
+  // After a rejected form the solver is not set up; a valid setup works again.
+  EXPECT_THROW(s.solve(), std::logic_error);
+  EXPECT_EQ(message(p.lifted), "no error");
+  EXPECT_NE(s.solve().info.status, LcpStatus::unsolved);
+}
+
+}  // namespace
+}  // namespace lcprelax
