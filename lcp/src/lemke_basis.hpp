@@ -39,7 +39,8 @@
 // their Symbolic and Numeric objects) and for the storage of the factors' row-wise copy
 // (sparse/hypersparse_solve.hpp), which inverse_row_nonzeros fills at the first tie after
 // a refactorization; its output vectors allocate only below capacity n. solve_transposed
-// (used by backward() only) allocates a temporary.
+// (used by backward() only) allocates a temporary, and so does inverse_rows on a lifted
+// basis (full tie rows, LemkeSettings::sparse_tie_rows = false: the reference path).
 #include <lcprelax/sparse/types.hpp>
 
 #include <memory>
