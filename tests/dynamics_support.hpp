@@ -3,6 +3,7 @@
 // stacks, pyramids, a closed pile of random polygons).
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/contact/polygon.hpp>
+#include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/models/simulator.hpp>
 #include <lcprelax/scenes/pile_scene.hpp>
 #include <lcprelax/scenes/scene.hpp>
@@ -73,6 +74,19 @@ inline Simulator pile_simulator(int bodies, std::uint64_t seed, ContactModel mod
 }
 
 /// `count` unit boxes (1 m, 1 kg) stacked on the ground at x = 0, every gap 0.
+/// The contact system of the island with the most contacts in sim's current state (at
+/// sim's Δt; an empty system when no two bodies touch).
+inline ContactSystem largest_island_system(const Simulator& sim, const CollisionSettings& collision = {}) {
+  const World& world = sim.world();
+  const std::vector<Contact> contacts = find_contacts(world, collision);
+  const std::vector<Island> islands = find_islands(world, contacts);
+  if (islands.empty()) return ContactSystem{};
+  const Island& island = *std::max_element(islands.begin(), islands.end(), [](const Island& a, const Island& b) {
+    return a.contacts.size() < b.contacts.size();
+  });
+  return assemble_contact_system(world, contacts, island, sim.settings().dt);
+}
+
 inline std::vector<RigidBody> box_stack(int count) {
   std::vector<RigidBody> bodies;
   for (int i = 0; i < count; ++i) bodies.push_back(box(1.0, 1.0, 1.0, Vec3(0.0, 0.5 + i, 0.0)));

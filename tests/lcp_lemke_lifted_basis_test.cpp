@@ -40,19 +40,13 @@ struct PileLcp {
   LcpLiftedForm lifted;
 };
 
-// The LCPs of the largest islands of a 40-body pile dropped for `steps` steps.
+// The LCP of the largest island of a 40-body pile dropped for `steps` steps.
 PileLcp pile_lcp(int steps) {
   Simulator sim = test::pile_simulator(40, 2, ContactModel::lcp);
   for (int k = 0; k < steps; ++k) sim.step();
-  const World& world = sim.world();
-  const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{});
-  const std::vector<Island> islands = find_islands(world, contacts);
-  EXPECT_FALSE(islands.empty());
-  const Island& island = *std::max_element(islands.begin(), islands.end(), [](const Island& a, const Island& b) {
-    return a.contacts.size() < b.contacts.size();
-  });
+  const ContactSystem s = test::largest_island_system(sim);
+  EXPECT_GT(s.num_contacts(), 0);
   const double dt = sim.settings().dt;
-  const ContactSystem s = assemble_contact_system(world, contacts, island, dt);
   return {stewart_trinkle_lcp(s, delassus(s), dt), stewart_trinkle_lifted_form(s, dt)};
 }
 

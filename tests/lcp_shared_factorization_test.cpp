@@ -37,15 +37,8 @@ Simulator pile_at_rest() {
 
 TEST(LemkeSharedFactorization, ReusesTheAnalysisOfARepeatedBasisWithTheSameResult) {
   const Simulator sim = pile_at_rest();
-  const World& world = sim.world();
-  const std::vector<Contact> contacts = find_contacts(world, CollisionSettings{});
-  const std::vector<Island> islands = find_islands(world, contacts);
-  ASSERT_FALSE(islands.empty());
-  const Island& island = *std::max_element(islands.begin(), islands.end(), [](const Island& a, const Island& b) {
-    return a.contacts.size() < b.contacts.size();
-  });
   const double dt = sim.settings().dt;
-  const ContactSystem s = assemble_contact_system(world, contacts, island, dt);
+  const ContactSystem s = test::largest_island_system(sim);
   ASSERT_GT(s.num_contacts(), 100);
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   const ContactSolution cold = solve_lcp_model(s, dt, LemkeSettings{});
