@@ -1,6 +1,7 @@
 // Step 1b's restarts after an early ray (contact_step.hpp kLcpWarmRayRestarts):
-// reset_warm_contacts_on_ray takes back in the warm basis the contacts that a crash path's
-// pivots touched, friction first and the whole contact when it is touched again.
+// their bound (lcp_warm_ray_restart_allowed), and reset_warm_contacts_on_ray, which takes
+// back in the warm basis the contacts that a crash path's pivots touched, friction first
+// and the whole contact when it is touched again.
 // Checked on a hand-made system of 4 contacts, 3 of them with friction rows (so that the
 // row → contact map of z = [λn, β⁺, β⁻, γ] is not the identity).
 #include <lcprelax/core/errors.hpp>
@@ -59,6 +60,23 @@ TEST(LcpWarmRayReset, FrictionFirstThenTheWholeContact) {
   level = {2, 2, 2, 2};
   EXPECT_EQ(reset_warm_contacts_on_ray(s, trace, level, warm), 0);
   EXPECT_EQ(reset_warm_contacts_on_ray(s, {}, level, warm), 0);
+}
+
+// The restarts are bounded by their count and by the pivots of the rayed paths together
+// (contact_step.hpp kLcpWarmRayRestarts, kLcpWarmRayBudgetPerUnknown), not by either alone.
+TEST(LcpWarmRayReset, RestartsBoundedByCountAndPivots) {
+  const Index n = 20000;
+  const long budget = static_cast<long>(kLcpWarmRayBudgetPerUnknown * n);
+  EXPECT_TRUE(lcp_warm_ray_restart_allowed(0, 1, n));
+  EXPECT_TRUE(lcp_warm_ray_restart_allowed(5, 343, n));  // the 1,000-body step's 6th restart
+  EXPECT_TRUE(lcp_warm_ray_restart_allowed(kLcpWarmRayRestarts - 1, budget, n));
+  EXPECT_FALSE(lcp_warm_ray_restart_allowed(kLcpWarmRayRestarts, 1, n));
+  EXPECT_FALSE(lcp_warm_ray_restart_allowed(0, budget + 1, n));
+  // Early rays (each within kLcpWarmRayPivotsPerUnknown·n) allow at least
+  // budget / (that many) restarts, so the pivot budget alone never stops fewer than 5.
+  const long longest_early_ray = static_cast<long>(kLcpWarmRayPivotsPerUnknown * n);
+  EXPECT_TRUE(lcp_warm_ray_restart_allowed(4, 5 * longest_early_ray, n));
+  EXPECT_GE(kLcpWarmRayRestarts, 5);
 }
 
 TEST(LcpWarmRayReset, RefusesInconsistentSizes) {

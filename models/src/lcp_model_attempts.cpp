@@ -142,9 +142,12 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     std::vector<bool> start = warm;
     std::vector<signed char> level;
     const LemkeSolver* rc = &attempt(warm_crash, perturbed(delta, 0), &start, nullptr, &trace, ray_pivots);
-    for (int k = 0; k < kLcpWarmRayRestarts; ++k) {
+    long rayed = 0;  // pivots of the paths that ended on an early ray
+    for (int k = 0;; ++k) {
       const LcpInfo& info = rc->result().info;
       if (info.status != LcpStatus::ray_termination || info.pivots > ray_pivots) break;
+      rayed += info.pivots;
+      if (!lcp_warm_ray_restart_allowed(k, rayed, n)) break;
       if (level.empty()) level.assign(static_cast<std::size_t>(nc), 0);
       if (reset_warm_contacts_on_ray(s, trace, level, start) == 0) break;
       if (std::find(start.begin(), start.end(), true) == start.end()) break;  // all-w: step 2's cold start

@@ -135,8 +135,9 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 5.0;
 /// touched (and the contact of the variable that found no ratio) are taken back in the
 /// warm basis, the friction rows first and the whole contact when it is touched again
 /// (reset_warm_contacts_on_ray), and the crash path runs again from it, at most
-/// kLcpWarmRayRestarts times (each from scratch: a factorization and the pivots up to the
-/// next ray). Such rays come within 1–70 pivots on a dropping 500-body pile (islands of
+/// kLcpWarmRayRestarts times and while the rayed paths together took at most
+/// kLcpWarmRayBudgetPerUnknown pivots per unknown (lcp_warm_ray_restart_allowed; each
+/// restart from scratch: a factorization and the pivots up to the next ray). Such rays come within 1–70 pivots on a dropping 500-body pile (islands of
 /// 7,700–9,600 unknowns) on 3–6 of 20 steps and are no roundoff (every perturbation
 /// pattern ends on the same ray), while the warm basis differs from the step's solution in
 /// only 440–810 of its statuses: 2–32 contacts taken back let the path solve instead of
@@ -145,9 +146,31 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 5.0;
 /// restarts) the pivots went from 177,604 to 151,577, 247,794 to 244,357 and 618,652 to
 /// 607,437, the time down by 1.15×, 1.00× and 1.02×; perturbed answers 4, 11 and 6 steps
 /// against 4, 10 and 6 (bench/results/lemke_warm_ray_restarts.txt). A modest gain: most
-/// of a moving pile's pivots are in crash paths that solve.
+/// of a moving pile's pivots are in crash paths that solve. The bound was 4 restarts until
+/// a 1,000-body drop (`lcprelax pile --bodies 1000 --model lcp`, step 114, an island of
+/// 19,496 unknowns) rayed 5 times within 1–104 pivots and then paid for every later
+/// attempt: three perturbed cold paths stopped at their cap of 58,491 pivots (29 s each),
+/// an exact one on a ray, and M + εI stopped at its cap of 155,969 pivots (197 s), about
+/// 520 s for the step. The 6th restart solves it in 15,400 pivots (7.7 s).
+/// A restart costs one factorization and fewer than kLcpWarmRayPivotsPerUnknown·n pivots,
+/// and the cold path it saves 1.4–3 pivots per unknown or more. So the restarts are bounded
+/// by what they cost, not by a small count: at most kLcpWarmRayRestarts of them, and
+/// kLcpWarmRayBudgetPerUnknown·n pivots on the rayed paths together, a sixth of a 3n cold
+/// cap. Each contact goes up at most two levels, so the restarts also end when every
+/// touched contact is new. On the 500-body windows (`run_pile_scaling --sizes 500 --models lcp
+/// --steps 8 --warmup 1`), 64 restarts against 4: seed 5, 20,741.4 → 20,171.1 pivots per step;
+/// seeds 3 and 6 unchanged (bench/results/lemke_warm_ray_restarts.txt).
 constexpr double kLcpWarmRayPivotsPerUnknown = 0.1;
-constexpr int kLcpWarmRayRestarts = 4;
+constexpr int kLcpWarmRayRestarts = 64;
+constexpr double kLcpWarmRayBudgetPerUnknown = 0.5;
+
+/// Whether step 1b runs its crash path once more after `restarts` restarts whose rayed
+/// paths (the first path included) took `ray_pivots` pivots in all, on an LCP of n unknowns:
+/// restarts < kLcpWarmRayRestarts and ray_pivots ≤ kLcpWarmRayBudgetPerUnknown·n.
+inline bool lcp_warm_ray_restart_allowed(int restarts, long ray_pivots, Index n) {
+  return restarts < kLcpWarmRayRestarts &&
+         static_cast<double>(ray_pivots) <= kLcpWarmRayBudgetPerUnknown * static_cast<double>(n);
+}
 /// Pivot cap per LCP unknown of the cold attempts (steps 2, 3 and 4 above): on a
 /// 200-body pile the solved cold paths take 0.9–1.3 pivots per unknown, failing ones end on
 /// a ray within 1.2 or cycle to the pivot limit (50 per unknown).
