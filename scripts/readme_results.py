@@ -251,7 +251,7 @@ def pile_scaling(results):
 
 
 def lcp_pile(results):
-    name = "pile_scaling_lcp_lifted.csv"
+    name = "pile_scaling_lcp_windows.csv"
     rows = [r for r in read_csv(results, name) if r["phase"] == "window" and r["bodies"] == "500"]
     if not rows:
         raise ResultError(f"bench/results/{name}: no 500-body window rows")
@@ -266,6 +266,22 @@ def lcp_pile(results):
              f"{per_seed}; failed islands {failed}",
              f"≤ {goal(TARGET_LCP_PILE_SECONDS)} s: {verdict(within == len(rows))} "
              f"(within it: {within} of {len(rows)} seeds)", src(name))]
+
+
+def lcp_pile_slope(results):
+    name, txt = "pile_scaling_lcp_slope.csv", "pile_scaling_lcp_slope.txt"
+    text = read_text(results, txt)
+    slope = float(search(r"^slope log\(wall s/step\) vs log\(contacts\), lcp T=1: all sizes ([0-9.]+)",
+                         text, txt).group(1))
+    rows = [r for r in read_csv(results, name) if r["phase"] == "window" and r["model"] == "lcp"]
+    big = max(rows, key=lambda r: int(r["bodies"]))
+    small = min(rows, key=lambda r: int(r["bodies"]))
+    return [("Pile with the LCP contact model (8-step windows after a 150-step convex settle, 1 thread), "
+             "wall time per step against contacts",
+             f"∝ contacts^{g(slope, 3)} from {float(small['contacts_mean']):,.0f} to "
+             f"{float(big['contacts_mean']):,.0f} contacts; {int(big['bodies']):,} bodies: "
+             f"{seconds(big['seconds_per_step'])} per step ({float(big['work_mean']):,.0f} pivots), "
+             f"failed islands {sum(int(r['failed_islands']) for r in rows)}", "", src(name, txt))]
 
 
 def learn_block(results):
@@ -405,6 +421,7 @@ def generate(results):
     rows += pile_peers(results)
     rows += pile_scaling(results)
     rows += lcp_pile(results)
+    rows += lcp_pile_slope(results)
     rows += learn_block(results)
     rows += learn_scene(results)
     rows += learn_cost(results)
