@@ -137,10 +137,11 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 5.0;
 /// (reset_warm_contacts_on_ray), and the crash path runs again from it, at most
 /// kLcpWarmRayRestarts times and while the rayed paths together took at most
 /// kLcpWarmRayBudgetPerUnknown pivots per unknown (lcp_warm_ray_restart_allowed; each
-/// restart from scratch: a factorization and the pivots up to the next ray). Such rays come within 1–70 pivots on a dropping 500-body pile (islands of
-/// 7,700–9,600 unknowns) on 3–6 of 20 steps and are no roundoff (every perturbation
-/// pattern ends on the same ray), while the warm basis differs from the step's solution in
-/// only 440–810 of its statuses: 2–32 contacts taken back let the path solve instead of
+/// restart from scratch: a factorization and the pivots up to the next ray). Such rays
+/// come within 1–70 pivots on a dropping 500-body pile (islands of 7,700–9,600 unknowns)
+/// on 3–6 of 20 steps and are no roundoff (every perturbation pattern ends on the same
+/// ray), while the warm basis differs from the step's solution in only 440–810 of its
+/// statuses: 2–32 contacts taken back let the path solve instead of
 /// the cold start (1.4–1.7 pivots per unknown). On the same LCPs (every step of 20-step
 /// windows of seeds 1, 2 and 3, 14 steps for 3, each LCP solved with and without the
 /// restarts) the pivots went from 177,604 to 151,577, 247,794 to 244,357 and 618,652 to
