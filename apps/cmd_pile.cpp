@@ -1,7 +1,7 @@
 // `lcprelax pile [--bodies N] [--steps K] [--model lcp|convex]
 //  [--softening exp|impedance|penalty] [--dt S] [--gravity G] [--qp-eps E] [--lemke-tol E]
 //  [--post-stabilization-passes K] [--release-open-contacts] [--threads T] [--picture OUT.svg|OUT.png] [--frames DIR] [--scene FILE.json]
-//  [--export-fc2d FILE] [--json]` (docs/cli.md): random convex polygons dropped into a
+//  [--export-fc2d FILE] [--save-scene FILE.json] [--json]` (docs/cli.md): random convex polygons dropped into a
 // container (or a scene file), simulated with models/simulator.hpp.
 // Units: --dt in s; --gravity in m/s², the magnitude of gravity: a random pile's points
 // along −y, a scene's keeps the file's direction (−y when the file's gravity is zero);
@@ -18,7 +18,9 @@
 // JSON: bodies, contacts_max, steps, seconds_per_step, max_penetration (m), max_residual
 // (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
 // potential energy divided by the initial total), plus model, softening (convex model only),
-// failed_islands, seconds.
+// failed_islands, seconds, and saved_scene with --save-scene (the final state as a scene
+// file: the run's scene with its bodies' poses and velocities at the end; --scene continues
+// from it, with a cold first step for the lcp model, the file holding no Lemke bases).
 // Exit status 1 when any island's contact solve failed (it was then solved by the convex
 // fallback, see simulator.cpp), 2 on bad input. --scene FILE: the file's "model", "softening"
 // and "steps" hold unless --model / --softening / --steps name them. --softening (the convex
@@ -46,6 +48,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace lcprelax::cli {
 namespace {
@@ -57,7 +60,7 @@ struct PileCliOptions {
   std::string softening;  // empty: the scene's (exp_phi for a random pile)
   int threads = 0;
   std::uint64_t seed = 1;
-  std::string picture, frames, scene, export_fc2d, color = "contacts";
+  std::string picture, frames, scene, export_fc2d, save_scene, color = "contacts";
   int frame_every = 5;
   double dt = 0.0, gravity = 0.0;  // used only when --dt / --gravity are given
   double qp_eps = SimulatorSettings{}.qp.eps_abs;
@@ -85,6 +88,7 @@ void check_outputs(const PileCliOptions& o) {
   }
   require_writable_directory("--frames", o.frames);
   require_writable_file("--export-fc2d", o.export_fc2d);
+  require_writable_file("--save-scene", o.save_scene);
 }
 
 // --dt and --gravity onto the scene (a random pile's or the file's), --qp-eps and
@@ -185,6 +189,9 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   const std::string model = to_string(scene.settings.model);
   const std::string softening = to_string(scene.settings.convex_softening.method);
   const std::string scene_name = scene.name;
+  // --save-scene: the scene as run (the flags applied), its bodies replaced by the final state.
+  std::optional<Scene> to_save;
+  if (!o.save_scene.empty()) to_save = scene;
   Simulator sim = [&] {
     try {
       return make_simulator(std::move(scene), settings);
@@ -240,6 +247,10 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   if (progress) std::fprintf(stderr, "\n");
   const double seconds = watch.seconds();
   if (!o.picture.empty()) write_picture(o.picture, sim.world(), sim.contacts(), picture_options(o));
+  if (to_save) {
+    to_save->world = sim.world();
+    save_scene(o.save_scene, *to_save);
+  }
 
   Json j;
   j["bodies"] = sim.world().bodies.size();
@@ -255,6 +266,7 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   j["inaccurate_islands"] = inaccurate;
   j["seconds"] = seconds;
   if (!o.picture.empty()) j["picture"] = o.picture;
+  if (!o.save_scene.empty()) j["saved_scene"] = o.save_scene;
   if (o.json) print_json(j);
   else print_report(j, sim, scene_name.empty() ? o.scene : scene_name, first_failure);
   return failed == 0 ? kExitSuccess : kExitSolveFailed;
@@ -311,6 +323,9 @@ Command add_pile_command(CLI::App& parent) {
   app->add_flag("--draw-contacts", o->draw_contacts, "draw contact points and normals");
   app->add_option("--export-fc2d", o->export_fc2d,
                   "write the last step's contact problem as a Siconos 2-D frictional contact file");
+  app->add_option("--save-scene", o->save_scene,
+                  "write the final state as a scene JSON file (docs/formats.md) that --scene continues from; it "
+                  "holds no previous-step Lemke bases, so the lcp model's first step from it is a cold solve");
   add_json_flag(*app, o->json);
   app->footer(exit_codes_help("every step's contact problems were solved",
                               "some island's contact solve failed (it was then solved by the other model or "
