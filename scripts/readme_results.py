@@ -23,6 +23,7 @@ Python 3 standard library only.
 import argparse
 import csv
 import difflib
+import json
 import math
 import os
 import re
@@ -284,6 +285,20 @@ def lcp_pile_slope(results):
              f"failed islands {sum(int(r['failed_islands']) for r in rows)}", "", src(name, txt))]
 
 
+def lcp_pile_drop(results):
+    name, txt = "pile_lcp_1000_drop.json", "pile_lcp_1000_drop.txt"
+    try:
+        run = json.loads(read_text(results, name))
+    except json.JSONDecodeError as e:
+        raise ResultError(f"bench/results/{name}: {e}")
+    complete = run["failed_islands"] == 0 and run["steps"] == 400
+    return [(f"Pile with the LCP contact model, {run['bodies']:,} bodies dropped, {run['steps']} steps (1 thread)",
+             f"failed islands {run['failed_islands']}, inexact answers {run['inaccurate_islands']}; "
+             f"{seconds(run['seconds_per_step'])} per step on average, up to {run['contacts_max']:,} contacts; "
+             f"largest penetration {g(run['max_penetration'] * 1e3, 2)} mm",
+             f"1,000 bodies, 400 steps, no failed island: {verdict(complete)}", src(name, txt))]
+
+
 def learn_block(results):
     name = "learn_convergence.csv"
     rows = [r for r in read_csv(results, name) if r["problem"] == "block" and r["init"] == "10x"]
@@ -422,6 +437,7 @@ def generate(results):
     rows += pile_scaling(results)
     rows += lcp_pile(results)
     rows += lcp_pile_slope(results)
+    rows += lcp_pile_drop(results)
     rows += learn_block(results)
     rows += learn_scene(results)
     rows += learn_cost(results)
