@@ -150,6 +150,7 @@ void print_report(const Json& j, const Simulator& sim, const std::string& scene_
   r.add_count("inaccurate islands", inaccurate, inaccurate > 0 ? "(outside the tolerance, kept)" : "");
   r.add("time", number("seconds"), "s (" + format_number(number("seconds_per_step"), 3) + " s per step)", 3);
   if (j.contains("picture")) r.add("picture", j["picture"].get<std::string>());
+  if (j.contains("saved_scene")) r.add("saved scene", j["saved_scene"].get<std::string>());
   r.print();
 }
 

@@ -77,6 +77,15 @@ TEST_F(CliPileSaveScene, AFreeFallContinuesFromTheFile) {
   EXPECT_NEAR(t["angular_velocity"].get<double>(), w["angular_velocity"].get<double>(), 1e-12);
 }
 
+TEST_F(CliPileSaveScene, TheReportNamesTheFile) {
+  const std::string path = temp_path("saved_pile_report.json");
+  fs::remove(path);
+  const CliRun r = run_cli("pile --bodies 3 --steps 5 --save-scene '" + path + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("saved scene"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(path));
+}
+
 TEST_F(CliPileSaveScene, UnwritablePathIsRefusedBeforeTheRun) {
   const CliRun r = run_cli("pile --bodies 3 --steps 100000 --save-scene /nonexistent_dir/x.json --json");
   EXPECT_EQ(r.exit_code, 2);
