@@ -1,9 +1,9 @@
 // `lcprelax pile --save-scene FILE`: the final state as a scene file that `--scene`
 // continues from. Checked: the file is a scene with every body; reloading it and saving
 // again after 0 steps gives the same scene but for its "steps" (the saved state is exactly
-// what --scene loads);
-// a free fall split in two runs (10 + 10 steps through the file) ends where 20 steps end
-// (velocities are saved, not only poses); an unwritable path is exit 2 before any step.
+// what --scene loads); a free fall split in two runs (10 + 10 steps through the file) ends
+// where 20 steps end (velocities are saved, not only poses); the human report names the
+// file; an unwritable path is exit 2 before any step.
 #include "cli_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -11,7 +11,6 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <sstream>
 #include <string>
 
 namespace lcprelax {
@@ -19,13 +18,6 @@ namespace {
 
 using namespace testing_support;
 using Json = nlohmann::json;
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 class CliPileSaveScene : public ::testing::Test {
  protected:
@@ -41,13 +33,13 @@ TEST_F(CliPileSaveScene, SavedPileReloadsToTheSameState) {
   CliRun r = run_cli("pile --bodies 6 --steps 30 --model lcp --save-scene '" + a + "' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(Json::parse(r.out)["saved_scene"], a);
-  const Json scene = Json::parse(file_text(a));
+  const Json scene = Json::parse(slurp(a));
   EXPECT_EQ(scene["bodies"].size(), 6u);
   EXPECT_EQ(scene["model"], "lcp");
   r = run_cli("pile --scene '" + a + "' --steps 0 --save-scene '" + b + "' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Everything but "steps" (the run's, here 30 and 0) is the same, number for number.
-  Json ja = Json::parse(file_text(a)), jb = Json::parse(file_text(b));
+  Json ja = Json::parse(slurp(a)), jb = Json::parse(slurp(b));
   EXPECT_EQ(ja["steps"], 30);
   EXPECT_EQ(jb["steps"], 0);
   ja.erase("steps");
@@ -67,8 +59,8 @@ TEST_F(CliPileSaveScene, AFreeFallContinuesFromTheFile) {
   ASSERT_EQ(run_cli("pile --scene '" + scene + "' --steps 10 --save-scene '" + half + "' --json").exit_code, 0);
   ASSERT_EQ(run_cli("pile --scene '" + half + "' --steps 10 --save-scene '" + two + "' --json").exit_code, 0);
   ASSERT_EQ(run_cli("pile --scene '" + scene + "' --steps 20 --save-scene '" + whole + "' --json").exit_code, 0);
-  const Json h = Json::parse(file_text(half))["bodies"][0], t = Json::parse(file_text(two))["bodies"][0],
-             w = Json::parse(file_text(whole))["bodies"][0];
+  const Json h = Json::parse(slurp(half))["bodies"][0], t = Json::parse(slurp(two))["bodies"][0],
+             w = Json::parse(slurp(whole))["bodies"][0];
   EXPECT_NEAR(h["velocity"][1].get<double>(), -0.981, 1e-9);  // −g·10·Δt: the saved velocity
   EXPECT_LT(h["position"][1].get<double>(), 10.0);
   for (const char* key : {"position", "velocity"})
@@ -82,7 +74,7 @@ TEST_F(CliPileSaveScene, TheReportNamesTheFile) {
   fs::remove(path);
   const CliRun r = run_cli("pile --bodies 3 --steps 5 --save-scene '" + path + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("saved scene"), std::string::npos) << r.out;
+  EXPECT_EQ(report_value(r.out, "saved scene"), path) << r.out;
   EXPECT_TRUE(fs::exists(path));
 }
 

@@ -147,11 +147,11 @@ constexpr double kLcpWarmCrashPivotsPerUnknown = 5.0;
 /// restarts) the pivots went from 177,604 to 151,577, 247,794 to 244,357 and 618,652 to
 /// 607,437, the time down by 1.15×, 1.00× and 1.02×; perturbed answers 4, 11 and 6 steps
 /// against 4, 10 and 6 (bench/results/lemke_warm_ray_restarts.txt). A modest gain: most
-/// of a moving pile's pivots are in crash paths that solve. The bound was 4 restarts until
-/// a 1,000-body drop (`lcprelax pile --bodies 1000 --model lcp`, step 114, an island of
-/// 19,496 unknowns) rayed 5 times within 1–104 pivots and then paid for every later
-/// attempt: three perturbed cold paths stopped at their cap of 58,491 pivots (29 s each),
-/// an exact one on a ray, and M + εI stopped at its cap of 155,969 pivots (197 s), about
+/// of a moving pile's pivots are in crash paths that solve. A bound of 4 restarts is too
+/// few at 1,000 bodies: with it, step 114 of `lcprelax pile --bodies 1000 --model lcp` (an
+/// island of 19,496 unknowns) rays 5 times within 1–104 pivots and then pays for every later
+/// attempt: three perturbed cold paths stop at their cap of 58,491 pivots (29 s each),
+/// an exact one on a ray, and M + εI stops at its cap of 155,969 pivots (197 s), about
 /// 520 s for the step. The 6th restart solves it in 15,400 pivots (7.7 s).
 /// A restart costs one factorization and fewer than kLcpWarmRayPivotsPerUnknown·n pivots,
 /// and the cold path it saves 1.4–3 pivots per unknown or more. So the restarts are bounded
