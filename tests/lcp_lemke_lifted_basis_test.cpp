@@ -16,6 +16,9 @@
 //   take the same path (same status and pivots) to the same z;
 // - a regularized retry (M + εI: the basis adds ε to H's diagonal) solves with the lifted
 //   basis as with the plain one;
+// - the iterative refinement after each refactorization computes q − B x_B from the lifted
+//   form (J (d ∘ Jᵀz) + (H + εI) z), so the checks above of the final residual on M, with K
+//   refactorized every 20 or 3 pivots, also pin that residual;
 // - forms that do not describe M get an InputError naming the problem.
 #include <lcprelax/contact/collision.hpp>
 #include <lcprelax/core/errors.hpp>

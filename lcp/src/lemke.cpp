@@ -34,6 +34,8 @@ void LemkeSolver::Impl::allocate() {
   a.resize(n);
   ratio_col.resize(n);
   refine.resize(n);
+  refine_z.resize(n);
+  refine_dof.resize(has_lifted && settings.lifted_basis ? lifted_J.cols() : 0);
   d_cover.resize(n);
   z_spare.resize(n);
   w_spare.resize(n);
@@ -116,7 +118,7 @@ bool LemkeSolver::Impl::factorize_basic() {
 }
 
 // Factorizes the current basis (unless the factorization already holds it) and sets
-// x_B = B⁻¹q with up to two steps of iterative refinement (r = q − B x_B; KLU's
+// x_B = B⁻¹q with up to two steps of iterative refinement (r = q − B x_B, residual_of_basic; KLU's
 // threshold pivoting and ill-conditioned bases of resting-contact problems with
 // ‖q‖ ~ 1e-19 need them); false if B is singular.
 bool LemkeSolver::Impl::refactor(Vector& x) {
@@ -124,15 +126,39 @@ bool LemkeSolver::Impl::refactor(Vector& x) {
   x = q;
   basis->solve(x);
   if (!x.allFinite()) return false;
-  const detail::LemkeColumns cols{&M, &d, n};
   for (int step = 0; step < 2; ++step) {
-    refine = q;
-    for (Index k = 0; k < n; ++k) cols.add_to(basic[k], -x(k), refine);
+    residual_of_basic(x, refine);
     if (refine.lpNorm<Eigen::Infinity>() == 0.0) break;
     basis->solve(refine);
     x += refine;
   }
   return x.allFinite();
+}
+
+// r = q − B x for the basic variables' values x. B's z columns are −M's: with the lifted
+// basis, M z_B = J (d ∘ Jᵀz_B) + (H + σI) z_B (z_B: x at the basic z's rows), O(nnz(J) +
+// nnz(H)) work instead of the nonzeros of the basic z's columns of M (J D Jᵀ couples every
+// contact of a body with every other, so M's columns are several times denser than J's
+// rows), and the residual of the form that the basis factorizes.
+void LemkeSolver::Impl::residual_of_basic(const Vector& x, Vector& r) {
+  r = q;
+  if (refine_dof.size() == 0 || !(has_lifted && settings.lifted_basis)) {
+    const detail::LemkeColumns cols{&M, &d, n};
+    for (Index k = 0; k < n; ++k) cols.add_to(basic[k], -x(k), r);
+    return;
+  }
+  refine_z.setZero();
+  for (Index k = 0; k < n; ++k) {
+    const Index var = basic[k];
+    if (var < n) r(var) -= x(k);
+    else if (var < 2 * n) refine_z(var - n) = x(k);
+    else r += x(k) * d;  // z₀'s column is −d
+  }
+  refine_dof.noalias() = lifted_JT * refine_z;
+  refine_dof.array() *= lifted_d.array();
+  r.noalias() += lifted_J * refine_dof;
+  r.noalias() += lifted_H * refine_z;
+  if (lifted_shift != 0.0) r += lifted_shift * refine_z;
 }
 
 LemkeSolver::LemkeSolver(LemkeSettings settings) : impl_(std::make_unique<Impl>()) {

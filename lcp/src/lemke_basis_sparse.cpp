@@ -18,7 +18,9 @@
 // pattern analysed last (the orderings depend on the pattern only: same factors).
 //
 // W is kept dense (for S and the rows of B⁻¹) and by its nonzeros per column (for the
-// correction of each solved column, work Σ nnz(W_j) instead of n·|P|).
+// correction of each solved column, work Σ nnz(W_j) instead of n·|P|). A replacement writes
+// both in one pass over the solved column and updates S in one column and row (O(|P|)),
+// then refactorizes S's dense LU (|P| ≤ kMaxSchurUpdates).
 // Work arrays (W, S and its LU, the CSC arrays of B₀, the solved column) are sized at
 // construction; S and its LU have fixed capacity kMaxSchurUpdates², and the small blocks
 // of the Schur updates live on the stack, so only klu_analyze/klu_factor allocate, and
@@ -68,9 +70,11 @@ class SparseLemkeBasis final : public LemkeBasis {
     w_index_.resize(static_cast<std::size_t>(max_updates_));
     w_value_.resize(static_cast<std::size_t>(max_updates_));
     w_dense_.assign(static_cast<std::size_t>(max_updates_), false);
+    w_count_.assign(static_cast<std::size_t>(max_updates_), 0);
     for (int j = 0; j < max_updates_; ++j) {
-      w_index_[static_cast<std::size_t>(j)].reserve(static_cast<std::size_t>(columns.n));
-      w_value_[static_cast<std::size_t>(j)].reserve(static_cast<std::size_t>(columns.n));
+      // Uninitialized storage (new T[n], not a vector's zero fill): written before it is read.
+      w_index_[static_cast<std::size_t>(j)].reset(new int[static_cast<std::size_t>(columns.n)]);
+      w_value_[static_cast<std::size_t>(j)].reset(new double[static_cast<std::size_t>(columns.n)]);
     }
     col_index_.resize(static_cast<std::size_t>(columns.n));
     col_value_.resize(static_cast<std::size_t>(columns.n));
@@ -255,36 +259,45 @@ class SparseLemkeBasis final : public LemkeBasis {
 
   bool replace(Index r, const Vector& /*a*/) override {
     Index j = slot_[r];
+    const bool slot_reused = j >= 0;
     if (j < 0) {
       if (static_cast<int>(pos_.size()) >= max_updates_) return false;
       j = static_cast<Index>(pos_.size());
       pos_.push_back(r);
       slot_[r] = static_cast<int>(j);
     }
-    W_.col(j) = pending_;
-    // W's column j by its nonzeros too (correct() walks them; capacity n reserved), unless
-    // it is dense: correct() then runs a contiguous axpy over the whole column.
-    std::vector<int>& wi = w_index_[static_cast<std::size_t>(j)];
-    std::vector<double>& wv = w_value_[static_cast<std::size_t>(j)];
-    wi.clear();
-    wv.clear();
-    const Index nonzeros = (pending_.array() != 0.0).count();
-    w_dense_[static_cast<std::size_t>(j)] =
-        static_cast<double>(nonzeros) > kDenseColumn * static_cast<double>(cols_.n);
-    if (!w_dense_[static_cast<std::size_t>(j)])
-      for (Index i = 0; i < cols_.n; ++i)
-        if (pending_(i) != 0.0) wi.push_back(static_cast<int>(i)), wv.push_back(pending_(i));
+    // W's column j, and the same column by its nonzeros (correct() walks them), in one pass
+    // over pending_ (branch-free: every entry is written at the list's end, which advances on
+    // a nonzero). A column with more than kDenseColumn·n nonzeros is marked dense: correct()
+    // then runs a contiguous axpy over the whole of it and ignores the list.
+    const std::size_t js = static_cast<std::size_t>(j);
+    double* w = W_.col(j).data();
+    const double* v = pending_.data();
+    int* wi = w_index_[js].get();
+    double* wv = w_value_[js].get();
+    Index nonzeros = 0;
+    for (Index i = 0; i < cols_.n; ++i) {
+      const double x = v[i];
+      w[i] = x;
+      wi[nonzeros] = static_cast<int>(i);
+      wv[nonzeros] = x;
+      nonzeros += x != 0.0;
+    }
+    w_count_[js] = nonzeros;
+    w_dense_[js] = static_cast<double>(nonzeros) > kDenseColumn * static_cast<double>(cols_.n);
     const Index k = static_cast<Index>(pos_.size());
-    S_.resize(k, k);
-    for (Index a = 0; a < k; ++a) S_.row(a) = W_.row(pos_[a]).head(k);
-    s_lu_.compute(S_);
+    // S = E_Pᵀ W changes in column j (W's new column at the positions P) and, for a new
+    // position, in row j (row r of W's earlier columns): O(|P|) entries, not |P|².
+    for (Index a = 0; a < k; ++a) S_(a, j) = w[pos_[a]];
+    if (!slot_reused)
+      for (Index b = 0; b < j; ++b) S_(j, b) = W_(r, b);
+    s_lu_.compute(S_.topLeftCorner(k, k));
     return s_lu_.rcond() > 1e-12;
   }
 
   long memory_bytes() const override {
     const long factor = identity_ ? 0 : klu_.factor_nnz();
-    long w_nonzeros = 0;
-    for (const std::vector<int>& wi : w_index_) w_nonzeros += static_cast<long>(wi.capacity());
+    const long w_nonzeros = static_cast<long>(w_index_.size()) * static_cast<long>(cols_.n);
     return static_cast<long>(sizeof(double)) * (factor + W_.size() + w_nonzeros) +
            static_cast<long>(sizeof(int)) * (factor + w_nonzeros);
   }
@@ -337,9 +350,10 @@ class SparseLemkeBasis final : public LemkeBasis {
         y.noalias() -= tj * W_.col(j);
         continue;
       }
-      const std::vector<int>& wi = w_index_[static_cast<std::size_t>(j)];
-      const std::vector<double>& wv = w_value_[static_cast<std::size_t>(j)];
-      for (std::size_t e = 0; e < wi.size(); ++e) y(wi[e]) -= wv[e] * tj;
+      const int* wi = w_index_[static_cast<std::size_t>(j)].get();
+      const double* wv = w_value_[static_cast<std::size_t>(j)].get();
+      const Index count = w_count_[static_cast<std::size_t>(j)];
+      for (Index e = 0; e < count; ++e) y(wi[e]) -= wv[e] * tj;
     }
     for (Index j = 0; j < k; ++j) y(pos_[j]) += t(j);
   }
@@ -358,14 +372,15 @@ class SparseLemkeBasis final : public LemkeBasis {
   std::vector<Index> pos_;  // replaced positions P
   std::vector<int> slot_;   // slot of a position in P, or −1
   DenseMatrix W_;           // B₀⁻¹ C, column j for position pos_[j]
-  std::vector<std::vector<int>> w_index_;     // W's column j by its nonzeros: rows
-  std::vector<std::vector<double>> w_value_;  // and values
+  std::vector<std::unique_ptr<int[]>> w_index_;     // W's column j by its nonzeros: rows (n
+  std::vector<std::unique_ptr<double[]>> w_value_;  // slots, the first w_count_[j] used), values
+  std::vector<Index> w_count_;                // nonzeros of W's column j
   std::vector<bool> w_dense_;  // column j has more than kDenseColumn·n nonzeros (no lists)
   // Density above which a column of W is applied as a contiguous (vectorized) axpy instead
   // of an indexed walk over its nonzeros: 2–7% less CPU time on dropping LCP piles of 120
   // and 300 bodies, same pivots (bench/results/lemke_dense_correction.txt).
   static constexpr double kDenseColumn = 0.3;
-  SchurMatrix S_;           // S = E_Pᵀ W
+  Eigen::Matrix<double, kCap, kCap> S_;  // S = E_Pᵀ W in its top-left |P|×|P| corner
   Eigen::PartialPivLU<SchurMatrix> s_lu_;
   SparseMatrix B0_;         // B₀ (CSC), input of KLU
   Vector pending_;          // B₀⁻¹ c of the last solve_column

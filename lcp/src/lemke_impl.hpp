@@ -59,6 +59,7 @@ struct LemkeSolver::Impl {
 
   // Work arrays, sized at setup (the pivot loop allocates nothing).
   Vector xB, a, ratio_col, refine;  // x_B; B⁻¹(entering column); ratio denominators; residual
+  Vector refine_z, refine_dof;       // residual_of_basic's z_B (n) and J's dofs (lifted basis)
   Vector z_spare, w_spare;           // storage of result.z / result.w between solves
   Vector z_clip, w_clip;             // z clipped at 0 and its w (extract_solution)
   Vector d_cover;                    // the settings' covering vector during a crash start
@@ -77,6 +78,7 @@ struct LemkeSolver::Impl {
   void discard_solution();
   void take(Vector& v, Vector& spare) const;
   bool refactor(Vector& x);
+  void residual_of_basic(const Vector& x, Vector& r);  // r = q − B x (lemke.cpp)
   bool factorize_basic();
   void finish(LcpStatus status, const char* message) {
     result.info.status = status;
