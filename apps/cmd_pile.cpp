@@ -19,8 +19,8 @@
 // (largest contact-solve residual), max_energy_gain (largest one-step increase of kinetic +
 // potential energy divided by the initial total), plus model, softening (convex model only),
 // failed_islands, seconds, and saved_scene with --save-scene (the final state as a scene
-// file: the run's scene with its bodies' poses and velocities at the end; --scene continues
-// from it, with a cold first step for the lcp model, the file holding no Lemke bases).
+// file: the run's scene with its bodies' poses and velocities at the end and the simulator's
+// warm-start state; --scene continues from it as the run would have continued).
 // Exit status 1 when any island's contact solve failed (it was then solved by the convex
 // fallback, see simulator.cpp), 2 on bad input. --scene FILE: the file's "model", "softening"
 // and "steps" hold unless --model / --softening / --steps name them. --softening (the convex
@@ -190,7 +190,8 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   const std::string model = to_string(scene.settings.model);
   const std::string softening = to_string(scene.settings.convex_softening.method);
   const std::string scene_name = scene.name;
-  // --save-scene: the scene as run (the flags applied), its bodies replaced by the final state.
+  // --save-scene: the scene as run (the flags applied), its bodies replaced by the final state
+  // and its warm start by the simulator's (the last step's bases or active sets).
   std::optional<Scene> to_save;
   if (!o.save_scene.empty()) to_save = scene;
   Simulator sim = [&] {
@@ -250,6 +251,7 @@ int run_pile(const PileCliOptions& o, const CLI::App& app) {
   if (!o.picture.empty()) write_picture(o.picture, sim.world(), sim.contacts(), picture_options(o));
   if (to_save) {
     to_save->world = sim.world();
+    to_save->warm_start = sim.warm_start_state();
     save_scene(o.save_scene, *to_save);
   }
 

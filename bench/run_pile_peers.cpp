@@ -3,6 +3,7 @@
 //
 //   run_pile_peers [--pile-sizes 200,1000] [--settle-steps 300] [--steps 50]
 //                  [--lcp-max-bodies 200] [--lcp-resettle-max-steps 0] [--lcp-scene-dir DIR]
+//                  [--pile-scene FILE [--scene-warmup-steps 3]]
 //                  [--pyramid-base 20] [--pyramid-steps 200]
 //                  [--incline 0.3:0.2,...] [--incline-steps 100] [--engines ...]
 //                  [--skip-pile] [--skip-pyramid] [--skip-incline] [--seed 1] [--csv OUT]
@@ -19,8 +20,11 @@
 //   body point is slower than 1e-3 m/s, at most K steps; the note says how many; with
 //   --lcp-scene-dir DIR the re-settled pile is saved to
 //   DIR/lcp_pile_<bodies>_seed<seed>_settle<settle steps>.json
-//   and read from there by later runs, whose first --lcp-warmup-steps steps, untimed, rebuild
-//   the previous-step bases that a scene file does not hold): seconds_per_step (wall, the engine's step call only),
+//   with the simulator's warm-start state, and read from there by later runs, which take
+//   --lcp-warmup-steps untimed steps first; with --pile-scene FILE, every
+//   engine, lcprelax_lcp at any size, starts from FILE (e.g. written by lcprelax pile
+//   --save-scene) and runs --scene-warmup-steps untimed steps instead of settling; μ is the
+//   file's default): seconds_per_step (wall, the engine's step call only),
 //   contacts_mean (lcprelax: contacts entering the problem, within the speculative margin;
 //   Box2D: manifold points of touching contacts), max_penetration (the engine's own
 //   measure: lcprelax the largest −φ at the start of a step, Box2D the largest overlap of
@@ -78,6 +82,8 @@ class Runner {
   virtual int contacts() const = 0;
   virtual double own_penetration() const = 0;  ///< of the last step (m)
   virtual long failed() const { return 0; }    ///< failed islands so far
+  /// The warm-start state a scene file saves with the world (lcprelax engines).
+  virtual std::vector<ContactWarmRecord> warm_start_state() const { return {}; }
 };
 
 class LcprelaxRunner : public Runner {
@@ -94,6 +100,7 @@ class LcprelaxRunner : public Runner {
   int contacts() const override { return last_.contacts; }
   double own_penetration() const override { return last_.max_penetration; }
   long failed() const override { return failed_; }
+  std::vector<ContactWarmRecord> warm_start_state() const override { return sim_.warm_start_state(); }
 
  private:
   static Scene with_model(Scene s, ContactModel m) {
@@ -163,6 +170,35 @@ void write_row(std::ostream& os, const Row& r) {
 // LCP steps still pivot; Box2D's settled piles are at 2e-5 m/s (pile_peers.csv).
 constexpr double kRestSpeed = 1e-3;
 
+// The timed window of a pile test: `steps` steps of r, with the columns of the header comment.
+Row time_pile(Runner& r, const std::string& engine, int bodies, double mu, int steps, const std::string& settled) {
+  Row row;
+  row.test = "pile";
+  row.engine = engine;
+  row.bodies = bodies;
+  row.mu = mu;
+  row.steps = steps;
+  const long failed0 = r.failed();
+  double total = 0.0, cpu = 0.0, contacts = 0.0;
+  std::cerr << engine << ", " << bodies << " bodies: " << steps << " timed steps" << std::endl;
+  for (int k = 0; k < steps; ++k) {
+    const double c0 = cpu_seconds();
+    total += r.step();
+    cpu += cpu_seconds() - c0;
+    contacts += r.contacts();
+    if ((k + 1) % 5 == 0) std::cerr << "  step " << k + 1 << ": " << total << " s so far" << std::endl;
+    row.max_penetration = std::max(row.max_penetration, r.own_penetration());
+    row.polygon_overlap = std::max(row.polygon_overlap, polygon_overlap(r.world()));
+  }
+  row.seconds_per_step = total / steps;
+  row.cpu_per_step = cpu / steps;
+  row.contacts_mean = contacts / steps;
+  row.final_speed = max_body_speed(r.world());
+  row.failed = r.failed() - failed0;
+  row.note = settled + "; failed islands while settling " + std::to_string(failed0);
+  return row;
+}
+
 Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int settle_steps, int steps,
              int lcp_resettle_max_steps, const std::string& lcp_scene_dir, int lcp_warmup_steps) {
   PileOptions p;
@@ -210,6 +246,7 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
     if (!cached.empty()) {
       Scene resettled = convex.scene;
       resettled.world = r->world();
+      resettled.warm_start = r->warm_start_state();
       resettled.settings.model = ContactModel::lcp;
       save_scene(cached, resettled);
       std::cerr << "  re-settled pile saved to " << cached << std::endl;
@@ -222,31 +259,21 @@ Row run_pile(const std::string& engine, int bodies, std::uint64_t seed, int sett
       if ((k + 1) % 50 == 0) std::cerr << "  settle step " << k + 1 << ": " << seconds << " s this step" << std::endl;
     }
   }
-  Row row;
-  row.test = "pile";
-  row.engine = engine;
-  row.bodies = bodies;
-  row.mu = p.mu;
-  row.steps = steps;
-  const long failed0 = r->failed();
-  double total = 0.0, cpu = 0.0, contacts = 0.0;
-  std::cerr << engine << ", " << bodies << " bodies: " << steps << " timed steps" << std::endl;
-  for (int k = 0; k < steps; ++k) {
-    const double c0 = cpu_seconds();
-    total += r->step();
-    cpu += cpu_seconds() - c0;
-    contacts += r->contacts();
-    if ((k + 1) % 5 == 0) std::cerr << "  step " << k + 1 << ": " << total << " s so far" << std::endl;
-    row.max_penetration = std::max(row.max_penetration, r->own_penetration());
-    row.polygon_overlap = std::max(row.polygon_overlap, polygon_overlap(r->world()));
-  }
-  row.seconds_per_step = total / steps;
-  row.cpu_per_step = cpu / steps;
-  row.contacts_mean = contacts / steps;
-  row.final_speed = max_body_speed(r->world());
-  row.failed = r->failed() - failed0;
-  row.note = settled + "; failed islands while settling " + std::to_string(failed0);
-  return row;
+  return time_pile(*r, engine, bodies, p.mu, steps, settled);
+}
+
+// A pile from a scene file (--pile-scene): every engine starts from its bodies' poses and
+// velocities (the file's contact model replaced by the engine's), runs `warmup` untimed
+// steps (Box2D settles its skin-inflated shapes; lcprelax_lcp starts cold unless the file
+// holds the simulator's warm-start state, as lcprelax pile --save-scene writes it), then the
+// timed window.
+Row run_pile_scene(const std::string& engine, const Scene& scene, const std::string& file, int warmup, int steps) {
+  const int bodies = static_cast<int>(scene.world.bodies.size());
+  std::cerr << engine << ", " << bodies << " bodies from " << file << ": " << warmup << " untimed steps" << std::endl;
+  const std::unique_ptr<Runner> r = make_runner(engine, scene);
+  for (int k = 0; k < warmup; ++k) r->step();
+  return time_pile(*r, engine, bodies, scene.world.friction.default_mu, steps,
+                   "pile read from " + file + ", then " + std::to_string(warmup) + " untimed steps");
 }
 
 Scene pyramid_scene(int base) {
@@ -339,7 +366,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> inclines{"0.3:0.2", "0.3:0.3", "0.3:0.32", "0.3:0.6", "0.5:0.4", "0.5:0.54", "0.5:0.56"};
   int settle_steps = 300, steps = 50, lcp_max_bodies = 200, lcp_resettle_max_steps = 0, lcp_warmup_steps = 3,
       pyramid_base = 20, pyramid_steps = 200, incline_steps = 100;
-  std::string lcp_scene_dir;
+  std::string lcp_scene_dir, pile_scene;
+  int scene_warmup_steps = 3;
   bool skip_pile = false, skip_pyramid = false, skip_incline = false;
   std::uint64_t seed = 1;
   std::string csv = "pile_peers.csv";
@@ -358,6 +386,13 @@ int main(int argc, char** argv) {
                  "With --lcp-resettle-max-steps: save the re-settled pile in this directory, or read it from there "
                  "when an earlier run saved it");
   app.add_option("--lcp-warmup-steps", lcp_warmup_steps, "Untimed LCP steps after reading a re-settled pile")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
+  app.add_option("--pile-scene", pile_scene,
+                 "Pile test on this scene file (lcprelax pile --save-scene) for every engine, instead of "
+                 "--pile-sizes' generated piles")
+      ->check(CLI::ExistingFile);
+  app.add_option("--scene-warmup-steps", scene_warmup_steps, "With --pile-scene: untimed steps before the window")
       ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_option("--engines", engines, "Engines")
@@ -392,7 +427,11 @@ int main(int argc, char** argv) {
         const double alpha = std::stod(pair.substr(0, colon)), mu = std::stod(pair.substr(colon + 1));
         for (const std::string& e : engines) write_row(out, run_incline(e, alpha, mu, incline_steps));
       }
-    if (!skip_pile)
+    if (!skip_pile && !pile_scene.empty()) {
+      const Scene scene = load_scene(pile_scene);
+      for (const std::string& e : engines)
+        write_row(out, run_pile_scene(e, scene, pile_scene, scene_warmup_steps, steps));
+    } else if (!skip_pile)
       for (const int n : pile_sizes)
         for (const std::string& e : engines) {
           if (e == "lcprelax_lcp" && n > lcp_max_bodies) continue;

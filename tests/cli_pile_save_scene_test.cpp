@@ -2,8 +2,10 @@
 // continues from. Checked: the file is a scene with every body; reloading it and saving
 // again after 0 steps gives the same scene but for its "steps" (the saved state is exactly
 // what --scene loads); a free fall split in two runs (10 + 10 steps through the file) ends
-// where 20 steps end (velocities are saved, not only poses); the human report names the
-// file; an unwritable path is exit 2 before any step.
+// where 20 steps end (velocities are saved, not only poses); an lcp pile split in two
+// runs through the file ends where the uninterrupted run ends, bit for bit, and with the same
+// warm-start state (the file carries the bases the next step starts from); the human report
+// names the file; an unwritable path is exit 2 before any step.
 #include "cli_support.hpp"
 
 #include <nlohmann/json.hpp>
@@ -67,6 +69,20 @@ TEST_F(CliPileSaveScene, AFreeFallContinuesFromTheFile) {
     for (int k = 0; k < 2; ++k) EXPECT_NEAR(t[key][k].get<double>(), w[key][k].get<double>(), 1e-12) << key << k;
   EXPECT_NEAR(t["angle"].get<double>(), w["angle"].get<double>(), 1e-12);
   EXPECT_NEAR(t["angular_velocity"].get<double>(), w["angular_velocity"].get<double>(), 1e-12);
+}
+
+TEST_F(CliPileSaveScene, AnLcpPileContinuesFromTheFileAsUninterrupted) {
+  const std::string half = temp_path("save_scene_lcp_half.json"), two = temp_path("save_scene_lcp_two.json"),
+                    whole = temp_path("save_scene_lcp_whole.json");
+  const std::string pile = "pile --bodies 20 --seed 3 --model lcp --json ";
+  ASSERT_EQ(run_cli(pile + "--steps 60 --save-scene '" + half + "'").exit_code, 0);
+  ASSERT_EQ(run_cli("pile --scene '" + half + "' --steps 25 --save-scene '" + two + "' --json").exit_code, 0);
+  ASSERT_EQ(run_cli(pile + "--steps 85 --save-scene '" + whole + "'").exit_code, 0);
+  const Json h = Json::parse(slurp(half)), t = Json::parse(slurp(two)), w = Json::parse(slurp(whole));
+  ASSERT_TRUE(h.contains("warm_start"));
+  EXPECT_GT(h["warm_start"].size(), 20u);
+  EXPECT_EQ(t["bodies"], w["bodies"]);  // poses and velocities, number for number
+  EXPECT_EQ(t["warm_start"], w["warm_start"]);
 }
 
 TEST_F(CliPileSaveScene, TheReportNamesTheFile) {

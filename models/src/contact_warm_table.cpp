@@ -37,4 +37,19 @@ const ContactWarmTable::Entry* ContactWarmTable::find(const ContactKey& key) con
   return &entries_[static_cast<std::size_t>(it - keys_.begin())];
 }
 
+std::vector<ContactWarmRecord> ContactWarmTable::records() const {
+  std::vector<ContactWarmRecord> out(keys_.size());
+  for (std::size_t i = 0; i < keys_.size(); ++i) out[i] = {keys_[i], entries_[i].normal, entries_[i].friction};
+  return out;
+}
+
+void ContactWarmTable::assign(const std::vector<ContactWarmRecord>& records) {
+  clear();
+  for (const ContactWarmRecord& r : records) {
+    set_normal(r.key, r.normal);
+    set_friction(r.key, r.friction);
+  }
+  finish();
+}
+
 }  // namespace lcprelax

@@ -11,14 +11,20 @@ void Scene::validate() const {
   if (steps < 0) throw InputError("steps: must be >= 0");
 }
 
-Simulator make_simulator(const Scene& scene) { return Simulator(scene.world, scene.settings); }
+Simulator make_simulator(const Scene& scene) {
+  Simulator sim(scene.world, scene.settings);
+  if (!scene.warm_start.empty()) sim.set_warm_start_state(scene.warm_start);
+  return sim;
+}
 
 Simulator make_simulator(const Scene& scene, SimulatorSettings solver) {
   solver.dt = scene.settings.dt;
   solver.model = scene.settings.model;
   solver.margin = scene.settings.margin;
   solver.convex_softening = scene.settings.convex_softening;
-  return Simulator(scene.world, std::move(solver));
+  Simulator sim(scene.world, std::move(solver));
+  if (!scene.warm_start.empty()) sim.set_warm_start_state(scene.warm_start);
+  return sim;
 }
 
 }  // namespace lcprelax

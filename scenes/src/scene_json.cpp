@@ -5,6 +5,7 @@
 #include <lcprelax/core/text_input.hpp>
 
 #include "json_fields.hpp"
+#include "scene_warm_start_json.hpp"
 
 #include <climits>
 #include <cmath>
@@ -203,7 +204,7 @@ std::vector<T> read_list(const Json& root, const char* key, Read read) {
 Scene parse_scene(std::string_view json_text) {
   const Json root = scene_json::parse_json(json_text);
   scene_json::expect_object(root, "", {"name", "gravity", "dt", "steps", "model", "softening", "margin", "friction",
-                                       "bodies", "half_planes", "segments"});
+                                       "bodies", "half_planes", "segments", "warm_start"});
   Scene scene;
   if (const Json* n = find(root, "name")) scene.name = scene_json::string(*n, "name");
   if (const Json* g = find(root, "gravity")) scene.world.gravity = scene_json::vec2(*g, "gravity");
@@ -236,6 +237,8 @@ Scene parse_scene(std::string_view json_text) {
   scene.world.bodies = read_list<RigidBody>(root, "bodies", read_body);
   scene.world.half_planes = read_list<HalfPlane>(root, "half_planes", read_half_plane);
   scene.world.segments = read_list<Segment>(root, "segments", read_segment);
+  if (const Json* ws = find(root, "warm_start"))
+    scene.warm_start = scene_json::read_warm_start(*ws, static_cast<int>(scene.world.bodies.size()));
   return scene;
 }
 
@@ -338,6 +341,7 @@ std::string write_scene(const Scene& scene) {
                         {"material", s.material}});
   }
   root["segments"] = std::move(segments);
+  if (!scene.warm_start.empty()) root["warm_start"] = scene_json::warm_start_json(scene.warm_start);
   return scene_json::pretty(root);
 }
 

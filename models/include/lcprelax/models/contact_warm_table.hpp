@@ -18,6 +18,13 @@
 
 namespace lcprelax {
 
+/// One contact's entry of a ContactWarmTable with its key: a table's contents as values
+/// (records(), assign(); the Simulator's warm_start_state and a scene file's "warm_start").
+struct ContactWarmRecord {
+  ContactKey key{};
+  double normal = 0.0, friction = 0.0;  ///< lcp_basis_codes.hpp: normal 0/1, friction 0..7
+};
+
 class ContactWarmTable {
  public:
   struct Entry {
@@ -34,6 +41,11 @@ class ContactWarmTable {
   void finish();
   /// The entry of `key`, or nullptr when the table has none (after finish()).
   const Entry* find(const ContactKey& key) const;
+  /// The entries with their keys, in key order (after finish()).
+  std::vector<ContactWarmRecord> records() const;
+  /// Replaces the contents by `records` (clear, one write per field, finish): a key listed
+  /// twice keeps its last record's fields.
+  void assign(const std::vector<ContactWarmRecord>& records);
   /// Number of keys (after finish()).
   std::size_t size() const { return keys_.size(); }
   void swap(ContactWarmTable& other) noexcept {

@@ -193,6 +193,18 @@ class Simulator {
   const SimulatorSettings& settings() const { return settings_; }
   double time() const { return time_; }
   long steps_taken() const { return steps_; }
+  /// Each contact's part of the last step's Lemke basis (lcp model) or active set (the
+  /// convex model's active_set_newton), by contact identity (ContactKey: body a, body b,
+  /// static kind, static index, ordinal among the pair's contacts) in the codes of
+  /// lcp_basis_codes.hpp: what the next step warm-starts from. Empty before the first step.
+  std::vector<ContactWarmRecord> warm_start_state() const { return warm_.records(); }
+  /// Replaces that state, e.g. by one saved with a scene file (scene_json.hpp
+  /// "warm_start"): the next step starts from it as from the step that produced it. Throws
+  /// InputError naming the record for a body index outside [0, bodies) (a; b: [−1,
+  /// bodies)), a static kind outside 0..2, a static index < −1, an ordinal < 0, a normal
+  /// code other than 0 or 1, or a friction code that is not an integer in 0..7. A record
+  /// that matches no contact is harmless: no contact reads it.
+  void set_warm_start_state(const std::vector<ContactWarmRecord>& records);
   /// Contacts found at the start of the last step.
   const std::vector<Contact>& contacts() const { return contacts_; }
   double kinetic_energy() const;

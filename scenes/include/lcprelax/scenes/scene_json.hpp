@@ -38,7 +38,8 @@
 //                                           // rows vx, vy, ω (RigidBody::velocity_residual)
 //     }],
 //     "half_planes": [{"normal": [nx, ny], "offset": d, "material": k}],
-//     "segments": [{"a": [x, y], "b": [x, y], "material": k}]
+//     "segments": [{"a": [x, y], "b": [x, y], "material": k}],
+//     "warm_start": [[a, b, kind, index, ordinal, normal, friction], ...]  // default []
 //   }
 // Meaning:
 // - A body's world shape is p = position + R(angle) v for its listed vertices v. The
@@ -51,6 +52,12 @@
 // - Half-plane: free space is {p : normal·p ≥ offset}; "normal" must be non-zero and is
 //   normalized (normal and offset are both divided by |normal|); "offset" default 0.
 // - Segment: static, two-sided; a ≠ b.
+// - "warm_start" (Scene::warm_start, Simulator::warm_start_state): the state a simulator's
+//   next step warm-starts from, one entry per contact of the last step: its identity (body
+//   a ≥ 0, body b or −1 for a static shape, static kind 0 none / 1 half-plane / 2 segment,
+//   static index or −1, ordinal among the pair's contacts) and its codes (lcp_basis_codes.hpp:
+//   normal 0/1, friction 0..7). All integers. Written when the scene has one (lcprelax pile
+//   --save-scene); a file without it starts cold.
 // - "gap_offset" and "velocity_residual" are nonphysical terms a learned model may carry
 //   (world/world.hpp); the writer writes them only where they are nonzero.
 // Errors: lcprelax::InputError whose message names the field path, e.g.

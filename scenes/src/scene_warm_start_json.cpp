@@ -1,0 +1,48 @@
+// A scene file's "warm_start" list (scene_warm_start_json.hpp).
+#include "scene_warm_start_json.hpp"
+
+#include <climits>
+#include <cmath>
+
+namespace lcprelax::scene_json {
+
+std::vector<ContactWarmRecord> read_warm_start(const Json& list, int bodies) {
+  const char* key = "warm_start";
+  array(list, key);
+  std::vector<ContactWarmRecord> out(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string path = element(key, i);
+    const Json& e = array(list[i], path);
+    if (e.size() != 7)
+      fail(path, "expected 7 integers [body a, body b, static kind, static index, ordinal, normal, friction], got " +
+                     std::to_string(e.size()) + " entries");
+    // Bounds per position; a body index needs a body (body a at least one).
+    const long long lo[7] = {0, -1, 0, -1, 0, 0, 0};
+    const long long hi[7] = {bodies - 1LL, bodies - 1LL, 2, INT_MAX, INT_MAX, 1, 7};
+    long long v[7];
+    for (std::size_t k = 0; k < 7; ++k) v[k] = integer(e[k], element(path, k), lo[k], hi[k]);
+    ContactWarmRecord& r = out[i];
+    for (std::size_t k = 0; k < 5; ++k) r.key[k] = static_cast<int>(v[k]);
+    r.normal = static_cast<double>(v[5]);
+    r.friction = static_cast<double>(v[6]);
+  }
+  return out;
+}
+
+Json warm_start_json(const std::vector<ContactWarmRecord>& records) {
+  Json list = Json::array();
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    const ContactWarmRecord& r = records[i];
+    if (!(r.normal == 0.0 || r.normal == 1.0) ||
+        !(r.friction >= 0.0 && r.friction <= 7.0 && std::floor(r.friction) == r.friction))
+      fail(element("warm_start", i), "codes must be 0 or 1 (normal) and an integer in 0..7 (friction)");
+    Json e = Json::array();
+    for (int k : r.key) e.push_back(k);
+    e.push_back(static_cast<int>(r.normal));
+    e.push_back(static_cast<int>(r.friction));
+    list.push_back(std::move(e));
+  }
+  return list;
+}
+
+}  // namespace lcprelax::scene_json
