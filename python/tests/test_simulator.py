@@ -177,6 +177,33 @@ def test_bad_input():
         lcprelax.pile_scene(3)  # keyword-only
 
 
+def test_warm_start_state_continues_a_pile():
+    # A scene file's "warm_start" (docs/formats.md) is the state a saved run's next step starts
+    # from: a copy of a 12-body pile with it steps on exactly as the original, a copy without
+    # it starts cold; bad entries are InputErrors naming the entry.
+    original = lcprelax.Simulator(lcprelax.pile_scene(bodies=12, seed=2), model="lcp", threads=1)
+    for _ in range(60):
+        original.step()
+    state = original.warm_start_state
+    assert len(state) > 10 and all(len(e) == 7 for e in state)
+    scene = json.loads(lcprelax.pile_scene(bodies=12, seed=2))
+    for body, pose, vel in zip(scene["bodies"], original.poses, original.velocities):
+        # the generator's vertices are centred on their centroid: position is the pose
+        body["position"], body["angle"] = [pose[0], pose[1]], pose[2]
+        body["velocity"], body["angular_velocity"] = [vel[0], vel[1]], vel[2]
+    scene["model"] = "lcp"
+    warm = lcprelax.Simulator(json.dumps(dict(scene, warm_start=[list(e) for e in state])), threads=1)
+    cold = lcprelax.Simulator(json.dumps(scene), threads=1)
+    assert warm.warm_start_state == state and cold.warm_start_state == []
+    a, b, c = original.step(), warm.step(), cold.step()
+    assert b.work == a.work and b.warm_started_islands == a.warm_started_islands
+    assert c.work > b.work
+    np.testing.assert_allclose(warm.poses, original.poses, rtol=0, atol=1e-12)
+    bad = dict(scene, warm_start=[[0, -1, 1, 0, 0, 2, 0]])
+    with pytest.raises(lcprelax.InputError, match=r"warm_start\[0\]\[5\]"):
+        lcprelax.Simulator(json.dumps(bad))
+
+
 def test_results_are_copies():
     s = lcprelax.Simulator(box_text(half_planes=[]))
     p = s.poses
