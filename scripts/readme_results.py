@@ -208,31 +208,36 @@ def lemke(results):
 
 
 def pile_peers(results):
-    name = "pile_peers.csv"
+    # pile_peers.csv: each engine drops and settles its own pile; pile_peers_lcp_piles.csv:
+    # every engine from a pile that the LCP model dropped and saved (run_pile_peers
+    # --pile-scene). Each lcprelax row is compared with the Box2D row of its own file.
+    name, saved = "pile_peers.csv", "pile_peers_lcp_piles.csv"
     rows = read_csv(results, name)
-    piles = [r for r in rows if r["test"] == "pile"]
-    ratios, pens, within = [], [], []
-    for bodies in sorted({int(r["bodies"]) for r in piles}):
-        box = only(piles, name, bodies=str(bodies), engine="box2d")
-        for r in piles:
-            if int(r["bodies"]) == bodies and r["engine"] != "box2d":
-                model = {"lcprelax_lcp": "LCP model", "lcprelax_convex": "convex model"}[r["engine"]]
-                ratio = float(r['cpu_per_step']) / float(box['cpu_per_step'])
-                ratios.append(f"{model} {g(ratio, 2)}× ({bodies} bodies)")
-                pens.append(float(r["max_penetration"]))
-                if ratio <= TARGET_BOX2D_RATIO:
-                    within.append((bodies, f"{model}, {bodies} bodies"))
-        box_pen = [float(r["max_penetration"]) for r in piles if r["engine"] == "box2d"]
+    sources = [(name, [r for r in rows if r["test"] == "pile"], ""),
+               (saved, read_csv(results, saved), ", saved LCP pile")]
+    ratios, pens, within, box_pen = [], [], [], []
+    for source, piles, where in sources:
+        for bodies in sorted({int(r["bodies"]) for r in piles}):
+            box = only(piles, source, bodies=str(bodies), engine="box2d")
+            box_pen.append(float(box["max_penetration"]))
+            for r in piles:
+                if int(r["bodies"]) == bodies and r["engine"] != "box2d":
+                    model = {"lcprelax_lcp": "LCP model", "lcprelax_convex": "convex model"}[r["engine"]]
+                    ratio = float(r['cpu_per_step']) / float(box['cpu_per_step'])
+                    ratios.append(f"{model} {g(ratio, 2)}× ({bodies} bodies{where})")
+                    pens.append(float(r["max_penetration"]))
+                    if ratio <= TARGET_BOX2D_RATIO:
+                        within.append((bodies, f"{model}, {bodies} bodies{where}"))
     pyr = {r["engine"]: float(r["drift"]) for r in rows if r["test"] == "pyramid"}
     return [("Settled pile, CPU time per step, lcprelax / Box2D 2.4",
              "; ".join(ratios),
              f"≤ {goal(TARGET_BOX2D_RATIO)}× at 200, 1,000 and 2,000 bodies: "
              f"{verdict({200, 1000, 2000} <= {b for b, _ in within})}"
-             + (f" (within it: {'; '.join(t for _, t in within)})" if within else ""), src(name)),
+             + (f" (within it: {'; '.join(t for _, t in within)})" if within else ""), src(name, saved)),
             ("Settled pile, largest penetration; resting 210-box pyramid, drift in 200 steps",
              f"lcprelax ≤ {g(max(pens) * 1e3, 2)} mm, Box2D {g(min(box_pen) * 1e3, 2)}–{g(max(box_pen) * 1e3, 2)} mm; "
              f"drift: LCP model {g(pyr['lcprelax_lcp'])} m, convex {g(pyr['lcprelax_convex'])} m, "
-             f"Box2D {g(pyr['box2d'])} m", "", src(name))]
+             f"Box2D {g(pyr['box2d'])} m", "", src(name, saved))]
 
 
 def pile_scaling(results):
