@@ -3,9 +3,23 @@
 #include <lcprelax/models/contact_warm_table.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 namespace lcprelax {
+
+std::string contact_warm_record_error(const ContactWarmRecord& r, int bodies) {
+  const ContactKey& k = r.key;
+  if (k[0] < 0 || k[0] >= bodies) return "body a = " + std::to_string(k[0]) + " is not a body index";
+  if (k[1] < -1 || k[1] >= bodies) return "body b = " + std::to_string(k[1]) + " is neither a body index nor -1";
+  if (k[2] < 0 || k[2] > 2) return "static kind = " + std::to_string(k[2]) + " is not 0, 1 or 2";
+  if (k[3] < -1) return "static index = " + std::to_string(k[3]) + " is below -1";
+  if (k[4] < 0) return "ordinal = " + std::to_string(k[4]) + " is negative";
+  if (!(r.normal == 0.0 || r.normal == 1.0)) return "normal code must be 0 or 1";
+  if (!(r.friction >= 0.0 && r.friction <= 7.0 && std::floor(r.friction) == r.friction))
+    return "friction code must be an integer in 0..7";
+  return {};
+}
 
 void ContactWarmTable::clear() {
   writes_.clear();

@@ -11,11 +11,7 @@ void Scene::validate() const {
   if (steps < 0) throw InputError("steps: must be >= 0");
 }
 
-Simulator make_simulator(const Scene& scene) {
-  Simulator sim(scene.world, scene.settings);
-  if (!scene.warm_start.empty()) sim.set_warm_start_state(scene.warm_start);
-  return sim;
-}
+Simulator make_simulator(const Scene& scene) { return make_simulator(scene, scene.settings); }
 
 Simulator make_simulator(const Scene& scene, SimulatorSettings solver) {
   solver.dt = scene.settings.dt;

@@ -341,7 +341,7 @@ std::string write_scene(const Scene& scene) {
                         {"material", s.material}});
   }
   root["segments"] = std::move(segments);
-  if (!scene.warm_start.empty()) root["warm_start"] = scene_json::warm_start_json(scene.warm_start);
+  if (!scene.warm_start.empty()) root["warm_start"] = scene_json::warm_start_json(scene.warm_start, static_cast<int>(w.bodies.size()));
   return scene_json::pretty(root);
 }
 

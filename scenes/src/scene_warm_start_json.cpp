@@ -2,7 +2,6 @@
 #include "scene_warm_start_json.hpp"
 
 #include <climits>
-#include <cmath>
 
 namespace lcprelax::scene_json {
 
@@ -29,13 +28,11 @@ std::vector<ContactWarmRecord> read_warm_start(const Json& list, int bodies) {
   return out;
 }
 
-Json warm_start_json(const std::vector<ContactWarmRecord>& records) {
+Json warm_start_json(const std::vector<ContactWarmRecord>& records, int bodies) {
   Json list = Json::array();
   for (std::size_t i = 0; i < records.size(); ++i) {
     const ContactWarmRecord& r = records[i];
-    if (!(r.normal == 0.0 || r.normal == 1.0) ||
-        !(r.friction >= 0.0 && r.friction <= 7.0 && std::floor(r.friction) == r.friction))
-      fail(element("warm_start", i), "codes must be 0 or 1 (normal) and an integer in 0..7 (friction)");
+    if (const std::string e = contact_warm_record_error(r, bodies); !e.empty()) fail(element("warm_start", i), e);
     Json e = Json::array();
     for (int k : r.key) e.push_back(k);
     e.push_back(static_cast<int>(r.normal));

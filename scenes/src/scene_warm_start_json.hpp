@@ -17,8 +17,8 @@ namespace lcprelax::scene_json {
 /// entry otherwise, e.g. "warm_start[4][5]: must be in [0, 1], got 2").
 std::vector<ContactWarmRecord> read_warm_start(const Json& list, int bodies);
 
-/// The list as written by write_scene (the codes as integers; InputError naming the record
-/// for a code that is not one).
-Json warm_start_json(const std::vector<ContactWarmRecord>& records);
+/// The list as written by write_scene for a world of `bodies` bodies (the codes as integers;
+/// InputError naming the record for one that contact_warm_record_error refuses).
+Json warm_start_json(const std::vector<ContactWarmRecord>& records, int bodies);
 
 }  // namespace lcprelax::scene_json

@@ -14,6 +14,7 @@
 #include <lcprelax/models/contact_system.hpp>
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace lcprelax {
@@ -24,6 +25,11 @@ struct ContactWarmRecord {
   ContactKey key{};
   double normal = 0.0, friction = 0.0;  ///< lcp_basis_codes.hpp: normal 0/1, friction 0..7
 };
+
+/// Why `r` cannot be a contact's entry in a world of `bodies` bodies ("" when it can): body a
+/// outside [0, bodies), body b outside [−1, bodies), static kind outside 0..2, static index
+/// < −1, ordinal < 0, a normal code other than 0 or 1, a friction code not an integer in 0..7.
+std::string contact_warm_record_error(const ContactWarmRecord& r, int bodies);
 
 class ContactWarmTable {
  public:
