@@ -170,13 +170,13 @@ LemkeSolver::~LemkeSolver() = default;
 LemkeSolver::LemkeSolver(LemkeSolver&&) noexcept = default;
 LemkeSolver& LemkeSolver::operator=(LemkeSolver&&) noexcept = default;
 
-void LemkeSolver::setup(const SparseMatrix& M, const Vector& q, const LcpLiftedForm& lifted) {
-  Impl& m = *impl_;
-  const Index n = M.rows(), dofs = lifted.J.cols();
-  if (lifted.J.rows() != n || lifted.H.rows() != n || lifted.H.cols() != n || lifted.d.size() != dofs)
+// Checks the lifted form against M's size n and stores it (J, Jᵀ, H, d).
+void LemkeSolver::Impl::set_lifted(const LcpLiftedForm& lifted, Index n_of_m) {
+  const Index dofs = lifted.J.cols();
+  if (lifted.J.rows() != n_of_m || lifted.H.rows() != n_of_m || lifted.H.cols() != n_of_m || lifted.d.size() != dofs)
     throw InputError("LCP: lifted form has J " + std::to_string(lifted.J.rows()) + "x" + std::to_string(dofs) +
                      ", d " + std::to_string(lifted.d.size()) + ", H " + std::to_string(lifted.H.rows()) + "x" +
-                     std::to_string(lifted.H.cols()) + " for M of size " + std::to_string(n));
+                     std::to_string(lifted.H.cols()) + " for M of size " + std::to_string(n_of_m));
   auto finite = [](const SparseMatrix& A) {
     for (Index k = 0; k < A.nonZeros(); ++k)
       if (!std::isfinite(A.valuePtr()[k])) return false;
@@ -185,15 +185,21 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q, const LcpLiftedF
   if (!finite(lifted.J) || !finite(lifted.H) || !lifted.d.allFinite())
     throw InputError("LCP: lifted form has a NaN or infinite entry");
   if (dofs > 0 && !(lifted.d.minCoeff() > 0)) throw InputError("LCP: lifted form needs d > 0");
-  m.lifted_J = lifted.J;
-  m.lifted_J.makeCompressed();
-  m.lifted_JT = lifted.J.transpose();
-  m.lifted_JT.makeCompressed();
-  m.lifted_H = lifted.H;
-  m.lifted_H.makeCompressed();
-  m.lifted_d = lifted.d;
-  m.lifted_shift = 0.0;
-  m.has_lifted = true;
+  lifted_J = lifted.J;
+  lifted_J.makeCompressed();
+  lifted_JT = lifted.J.transpose();
+  lifted_JT.makeCompressed();
+  lifted_H = lifted.H;
+  lifted_H.makeCompressed();
+  lifted_d = lifted.d;
+  lifted_shift = 0.0;
+  has_lifted = true;
+}
+
+void LemkeSolver::setup(const SparseMatrix& M, const Vector& q, const LcpLiftedForm& lifted) {
+  Impl& m = *impl_;
+  const Index n = M.rows();
+  m.set_lifted(lifted, n);
   m.setup(M, q);  // validates M and q
   // M r = J (d ∘ Jᵀr) + H r for two probe vectors (one positive, one of alternating sign).
   for (int probe = 0; probe < 2; ++probe) {
@@ -213,36 +219,82 @@ void LemkeSolver::setup(const SparseMatrix& M, const Vector& q, const LcpLiftedF
   }
 }
 
+void LemkeSolver::setup(const LcpLiftedForm& lifted, const Vector& q) {
+  Impl& m = *impl_;
+  const Index n = q.size();
+  m.is_setup = false;
+  m.set_lifted(lifted, n);
+  // ‖M‖∞ ≤ max_i Σ_j (Σ_k |J_ik| d_k |J_jk| + |H_ij|) = ‖|J| (d ∘ |J|ᵀ1) + |H|1‖∞ (the tolerances' scale).
+  const Vector abs_dof = m.lifted_d.cwiseProduct(m.lifted_JT.cwiseAbs() * Vector::Ones(n));
+  const Vector bound = m.lifted_J.cwiseAbs() * abs_dof + m.lifted_H.cwiseAbs() * Vector::Ones(n);
+  m.matrix_formed = false;
+  m.M.resize(n, n);
+  m.M.setZero();
+  m.setup_sizes(q, n ? bound.maxCoeff() : 0.0);
+  // The dense method and the basis of M's columns read M at every factorization.
+  if (m.method == LemkeMethod::dense || !m.settings.lifted_basis) m.ensure_matrix();
+}
+
+// M = J diag(d) Jᵀ + H from the lifted form, when setup(lifted, q) left it unformed.
+void LemkeSolver::Impl::ensure_matrix() const {
+  if (matrix_formed) return;
+  SparseMatrix scaled = lifted_J * lifted_d.asDiagonal();
+  SparseMatrix product = scaled * lifted_JT;
+  M = product + lifted_H;
+  M.makeCompressed();
+  matrix_formed = true;
+}
+
+// out = M z (z, out of size n; M formed or in its lifted form).
+void LemkeSolver::Impl::apply_matrix(const Vector& z, Vector& out) {
+  if (matrix_formed) {
+    out.noalias() = M * z;
+    return;
+  }
+  refine_dof.noalias() = lifted_JT * z;
+  refine_dof.array() *= lifted_d.array();
+  out.noalias() = lifted_J * refine_dof;
+  out.noalias() += lifted_H * z;
+}
+
 void LemkeSolver::setup(const SparseMatrix& M, const Vector& q) {
   impl_->has_lifted = false;
   impl_->setup(M, q);
 }
 
 // Validates M and q and sizes everything for them (the lifted form, if any, is set).
-void LemkeSolver::Impl::setup(const SparseMatrix& M, const Vector& q) {
+void LemkeSolver::Impl::setup(const SparseMatrix& M_in, const Vector& q_in) {
+  if (M_in.rows() != M_in.cols()) throw InputError("LCP: M is not square");
+  if (q_in.size() != M_in.rows()) throw InputError("LCP: q has size " + std::to_string(q_in.size()) + ", M has " +
+                                                   std::to_string(M_in.rows()) + " rows");
+  for (Index k = 0; k < M_in.nonZeros(); ++k)
+    if (!std::isfinite(M_in.valuePtr()[k])) throw InputError("LCP: M has a NaN or infinite entry");
+  is_setup = false;
+  M = M_in;
+  M.makeCompressed();
+  matrix_formed = true;
+  const Index n = q_in.size();
+  Vector row_sums = Vector::Zero(n);
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
+  setup_sizes(q_in, n ? row_sums.maxCoeff() : 0.0);
+}
+
+// Validates q and the settings against n = q.size(), sets the tolerances from mnorm (‖M‖∞,
+// or a bound on it) and sizes everything.
+void LemkeSolver::Impl::setup_sizes(const Vector& q_in, double m_norm) {
   Impl& m = *this;
-  if (M.rows() != M.cols()) throw InputError("LCP: M is not square");
-  if (q.size() != M.rows()) throw InputError("LCP: q has size " + std::to_string(q.size()) + ", M has " +
-                                             std::to_string(M.rows()) + " rows");
-  for (Index k = 0; k < M.nonZeros(); ++k)
-    if (!std::isfinite(M.valuePtr()[k])) throw InputError("LCP: M has a NaN or infinite entry");
-  if (!q.allFinite()) throw InputError("LCP: q has a NaN or infinite entry");
-  const Index n = static_cast<Index>(q.size());
+  if (!q_in.allFinite()) throw InputError("LCP: q has a NaN or infinite entry");
+  const Index n = static_cast<Index>(q_in.size());
   if (m.settings.covering.size() != 0 && m.settings.covering.size() != n)
     throw InputError("LCP: covering vector has the wrong size");
   m.n = n;
-  m.M = M;
-  m.M.makeCompressed();
-  m.set_q(q);
+  m.set_q(q_in);
   m.d = m.settings.covering.size() ? m.settings.covering : Vector::Ones(n);
-  Vector row_sums = Vector::Zero(n);
-  for (Index j = 0; j < m.M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(m.M, j); it; ++it) row_sums(it.row()) += std::abs(it.value());
-  const double mnorm = n ? row_sums.maxCoeff() : 0.0;
-  m.mnorm = mnorm;
+  m.mnorm = m_norm;
   m.tol = m.settings.pivot_tolerance > 0 ? m.settings.pivot_tolerance
                                          : 10.0 * std::max<Index>(n, 1) * std::numeric_limits<double>::epsilon() *
-                                               std::max(1.0, mnorm);
+                                               std::max(1.0, m_norm);
   m.max_pivots = m.settings.max_pivots > 0 ? m.settings.max_pivots
                                            : 50L * (n + 1) + (n < 20 ? (1L << n) : 0L);
   m.max_pivots = std::min(m.max_pivots, 10'000'000L);
@@ -305,6 +357,7 @@ const LcpResult& LemkeSolver::solve() {
   const LcpStatus first = m.result.info.status;
   const int retries = m.settings.covering_retries + m.settings.regularization_retries;
   if (first != LcpStatus::solved && first != LcpStatus::pivot_limit && retries > 0 && m.n > 0) {
+    m.ensure_matrix();
     const SparseMatrix M0 = m.M;
     const Vector d0 = m.d;
     long pivots = m.result.info.pivots, refactorizations = m.result.info.refactorizations;
@@ -355,6 +408,7 @@ const LcpResult& LemkeSolver::solve() {
     m.result.info.refactorizations = refactorizations;
     m.result.info.tie_breaks = tie_breaks;
   }
+  m.result.info.matrix_formed = m.matrix_formed;
   m.result.info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m.result;
 }

@@ -20,7 +20,10 @@ namespace lcprelax {
 struct LemkeSolver::Impl {
   LemkeSettings settings;
   Index n = 0;
-  SparseMatrix M;
+  // M as given to setup(M, q, ...), or formed from the lifted form on first need
+  // (setup(lifted, q): ensure_matrix(); until then matrix_formed is false and M empty).
+  mutable SparseMatrix M;
+  mutable bool matrix_formed = true;
   Vector q_user;     // q as given
   Vector q, d;       // q = q_user / q_norm: the pivoting runs on ‖q‖∞ = 1 (z scales with q)
   double q_norm = 1.0;
@@ -71,6 +74,10 @@ struct LemkeSolver::Impl {
 
   // lemke.cpp
   void setup(const SparseMatrix& M, const Vector& q);
+  void setup_sizes(const Vector& q, double m_norm);
+  void set_lifted(const LcpLiftedForm& lifted, Index n_of_m);
+  void ensure_matrix() const;
+  void apply_matrix(const Vector& z, Vector& out);  // out = M z (lifted products while M is unformed)
   void set_q(const Vector& q_in);
   void allocate();
   void new_basis();

@@ -42,6 +42,8 @@ void LemkeSolver::Impl::run() {
     return finish(LcpStatus::solved, "empty problem");
   }
   long crash_pivots = 0;
+  // Purification, the repair of a singular crash basis and the flips read M's columns.
+  if (warm_point.size() == n || settings.crash_start) ensure_matrix();
   if (warm_point.size() == n) purify_warm_point();  // sets `warm` (lemke_purify.cpp)
   if (!warm.empty()) {
     bool factorized = load_warm_basis();
@@ -70,6 +72,7 @@ void LemkeSolver::Impl::run() {
 // mispredicts (with the x_B update below, 1.04-1.06x less time per step on a dropping
 // 500-body pile, same pivots: bench/results/lemke_branch_free_loops.txt).
 bool LemkeSolver::Impl::entering_candidates(Index entering) {
+  if (!matrix_formed) ensure_matrix();  // a z column of M enters (setup(lifted, q): formed here)
   basis->solve_column(entering, a);
   rows.resize(static_cast<std::size_t>(n));
   Index count = 0;
@@ -159,6 +162,7 @@ bool LemkeSolver::Impl::drop_vanished_z0(Index entering) {
   Index var = entering;
   if (std::abs(a(k0)) <= tol) {
     var = complement(entering, n);
+    ensure_matrix();
     basis->solve_column(var, a);
     if (!a.allFinite() || std::abs(a(k0)) <= tol) return false;
   }

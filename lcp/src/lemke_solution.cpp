@@ -28,12 +28,12 @@ void LemkeSolver::Impl::extract_solution(bool xb_is_current) {
   // tolerance) gives w = Mz + q exact in the first, while clipping moves w by ‖M‖·|x_B,i|
   // in other rows (granular fc2d, 2,020 contacts: 2.2e-9 against 4.8e-11). The one with
   // the smaller complementarity residual is returned (the clipped one on a tie).
-  refine.noalias() = M * result.z;
+  apply_matrix(result.z, refine);
   result.w = refine + q_user;
   const double unclipped = n ? result.z.cwiseMin(result.w).cwiseAbs().maxCoeff() : 0.0;
   if (n && result.z.minCoeff() < 0.0) {
     z_clip = result.z.cwiseMax(0.0);
-    w_clip.noalias() = M * z_clip;
+    apply_matrix(z_clip, w_clip);
     w_clip += q_user;
     const double clipped = z_clip.cwiseMin(w_clip).cwiseAbs().maxCoeff();
     if (clipped <= unclipped) {
@@ -60,6 +60,7 @@ LcpGradient LemkeSolver::backward(const Vector& dl_dz) const {
   if (dl_dz.size() != m.n || !dl_dz.allFinite()) throw InputError("LCP backward: dl_dz must be finite, size n");
   LcpGradient g;
   g.dq = Vector::Zero(m.n);
+  m.ensure_matrix();  // dM has M's pattern
   g.dM = m.M;
   if (m.n > 0) {
     Vector gb = Vector::Zero(m.n);

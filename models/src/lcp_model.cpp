@@ -111,18 +111,26 @@ StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix
     lcp.M = SparseMatrix(lcp.M + block);
   }
   lcp.M.makeCompressed();
-  lcp.q = Vector::Zero(nc + 3 * nf);
+  lcp.q = stewart_trinkle_q(s, dt);
+  return lcp;
+}
+
+Vector stewart_trinkle_q(const ContactSystem& s, double dt) {
+  const Index nc = s.num_contacts(), nf = s.num_friction(), bp = nc, bm = nc + nf;
+  Vector q = Vector::Zero(nc + 3 * nf);
   // Same expression as without softness (Eigen evaluates it as φ⁺/Δt, then += Jn v*): a rigid
   // system keeps its q bit for bit; the erp term (normal_gap_rate) is added only where set.
-  lcp.q.head(nc) = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
-  if (s.erp.size() > 0 && (s.erp.array() != 0.0).any())
-    lcp.q.head(nc) += s.erp.cwiseProduct(s.phi.cwiseMin(0.0)) / dt;
+  q.head(nc) = s.Jn * s.v_star + s.phi.cwiseMax(0.0) / dt;
+  if (s.erp.size() > 0 && (s.erp.array() != 0.0).any()) q.head(nc) += s.erp.cwiseProduct(s.phi.cwiseMin(0.0)) / dt;
   const Vector jt = s.Jt * s.v_star;
-  lcp.q.segment(bp, nf) = jt;
-  lcp.q.segment(bm, nf) = -jt;
-  for (std::size_t i = 0; i < block_index.size(); ++i)
-    if (block_index[i] >= 0) lcp.q(block_index[i]) += s.lcp_block.q(static_cast<Index>(i % 4));
-  return lcp;
+  q.segment(bp, nf) = jt;
+  q.segment(bm, nf) = -jt;
+  if (s.lcp_block.enabled) {
+    const std::vector<Index> block_index = stewart_trinkle_contact_indices(s);
+    for (std::size_t i = 0; i < block_index.size(); ++i)
+      if (block_index[i] >= 0) q(block_index[i]) += s.lcp_block.q(static_cast<Index>(i % 4));
+  }
+  return q;
 }
 
 // J's columns written directly in CSC: per velocity column, the Jn rows, then the Jt rows at
@@ -204,7 +212,8 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
                                 const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
                                 bool accept_perturbed) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
-  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
+  // M is formed only when step 1 (the warm basis, on the lifted form) does not solve.
+  StewartTrinkleLcpSource lcp(s, dt);
   const LcpLiftedForm lifted = stewart_trinkle_lifted_form(s, dt);
   LcpModelAttempts a;
   run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization, accept_perturbed,
@@ -221,8 +230,9 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
     out.residual = r.info.complementarity;
     return out;
   }
-  // Residual on the unperturbed LCP (a perturbed solution's is about δ·‖q‖∞ there).
-  out.residual = stewart_trinkle_residual(lcp, r.z);
+  // Residual on the unperturbed LCP (a perturbed solution's is about δ·‖q‖∞ there). M not
+  // formed: step 1 solved (q itself), and Lemke's own residual, from w = J(d∘Jᵀz) + Hz + q, is it.
+  out.residual = lcp.formed() ? stewart_trinkle_residual(lcp.lcp(), r.z) : r.info.complementarity;
   out.lambda_n = r.z.head(nc);
   out.lambda_t = r.z.segment(nc, nf) - r.z.segment(nc + nf, nf);
   const Vector impulse = s.Jn.transpose() * out.lambda_n + s.Jt.transpose() * out.lambda_t;

@@ -1,6 +1,7 @@
 // The lcp model's attempts on one island's LCP (lcp_model_attempts.hpp; the steps, their
 // caps and why: contact_step.hpp).
 #include <lcprelax/core/errors.hpp>
+#include <lcprelax/models/contact_system.hpp>
 #include <lcprelax/models/lcp_model_attempts.hpp>
 
 #include <algorithm>
@@ -39,7 +40,26 @@ double stewart_trinkle_residual(const StewartTrinkleLcp& lcp, const Vector& z) {
   return z.cwiseMin(w).cwiseAbs().maxCoeff();
 }
 
+StewartTrinkleLcpSource::StewartTrinkleLcpSource(const ContactSystem& s, double dt)
+    : s_(&s), dt_(dt), q_(stewart_trinkle_q(s, dt)) {}
+
+const StewartTrinkleLcp& StewartTrinkleLcpSource::lcp() {
+  if (!given_) {
+    own_ = stewart_trinkle_lcp(*s_, delassus(*s_), dt_);
+    given_ = &own_;
+  }
+  return *given_;
+}
+
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
+                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
+                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
+                            bool accept_perturbed, const LcpLiftedForm* lifted) {
+  StewartTrinkleLcpSource source(lcp);
+  run_lcp_model_attempts(s, source, settings, warm, out, skip_exact_cold, warm_factorization, accept_perturbed, lifted);
+}
+
+void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
                             bool accept_perturbed, const LcpLiftedForm* lifted) {
@@ -50,8 +70,9 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   out.message.clear();
   out.pivots = 0;
   out.warm_started = false;
-  const Index nc = s.num_contacts(), n = lcp.q.size();
-  if (lcp.M.rows() != n || lcp.M.cols() != n || n != nc + 3 * s.num_friction())
+  const Vector& q = lcp.q();
+  const Index nc = s.num_contacts(), n = q.size();
+  if ((lcp.formed() && (lcp.lcp().M.rows() != n || lcp.lcp().M.cols() != n)) || n != nc + 3 * s.num_friction())
     throw InputError("lcp model: the LCP's size does not match the contact system's nc + 3nf");
   // A warm basis without a basic z (every contact new, or the first step) is the all-w
   // basis of the cold start: its crash path would repeat step 2's first cold path exactly.
@@ -85,50 +106,54 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   const LemkeSolver* r = nullptr;
   // `lu`: the factorization to factorize in (step 1's warm_factorization), or none.
   // `trace`: the first trace_pivots pivots are recorded there (step 1b's restarts).
-  // `form`: M's lifted form (null: none).
-  auto attempt_on = [&](const SparseMatrix& M, const LcpLiftedForm* form, const LemkeSettings& ls, const Vector& q,
+  // `form`: M's lifted form (null: none); M null: the lifted form alone (setup(form, q)).
+  auto attempt_on = [&](const SparseMatrix* M, const LcpLiftedForm* form, const LemkeSettings& ls, const Vector& rhs,
                         const std::vector<bool>* basis, const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr,
                         std::vector<Index>* trace = nullptr, long trace_pivots = -1) -> const LemkeSolver& {
     LemkeSolver& solver = out.solvers.emplace_back(ls);
     if (lu) solver.share_factorization(lu);
     if (trace) solver.set_pivot_trace(trace, trace_pivots);
-    if (form) solver.setup(M, q, *form);
-    else solver.setup(M, q);
+    if (!M) solver.setup(*form, rhs);
+    else if (form) solver.setup(*M, rhs, *form);
+    else solver.setup(*M, rhs);
     if (basis) solver.warm_start(*basis);
     out.pivots += solver.solve().info.pivots;
     return solver;
   };
-  auto attempt = [&](const LemkeSettings& ls, const Vector& q, const std::vector<bool>* basis,
+  auto attempt = [&](const LemkeSettings& ls, const Vector& rhs, const std::vector<bool>* basis,
                      const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr, std::vector<Index>* trace = nullptr,
                      long trace_pivots = -1) -> const LemkeSolver& {
-    return attempt_on(lcp.M, lifted, ls, q, basis, lu, trace, trace_pivots);
+    return attempt_on(&lcp.lcp().M, lifted, ls, rhs, basis, lu, trace, trace_pivots);
   };
   auto solved = [](const LemkeSolver* x) { return x && has_solution(x->result().info.status); };
-  auto perturbed = [&](double delta, int seed) { return Vector(lcp.q + delta * pattern(seed)); };
+  auto perturbed = [&](double delta, int seed) { return Vector(q + delta * pattern(seed)); };
   // A solution of a perturbed LCP (q + δu, or M + εI: seed < 0), polished on (M, q) from
   // its basis by a short crash path with the covering vector B·1, and for q + δu where that
   // fails along u (the homotopy from q + θu back to q): r when a polish solves the LCP, else
   // kept as the inexact fallback.
   const LemkeSolver* inexact = nullptr;
   auto polish_on_q = [&](const LemkeSolver& rp, int seed) {
-    const LemkeSolver* polished = &attempt(polish, lcp.q, &rp.result().z_basic);
+    const LemkeSolver* polished = &attempt(polish, q, &rp.result().z_basic);
     if (!solved(polished) && seed >= 0) {  // the homotopy along the perturbation (lcp_types.hpp)
       LemkeSettings along = polish;
       along.crash_covering_from_basis = false;
       along.covering = pattern(seed);
-      polished = &attempt(along, lcp.q, &rp.result().z_basic);
+      polished = &attempt(along, q, &rp.result().z_basic);
     }
     if (solved(polished)) r = polished;
     else inexact = &rp;
   };
-  // 1. The warm basis on q where it is feasible.
-  if (has_warm) r = &attempt(warm_only, lcp.q, &warm, warm_factorization);
+  // 1. The warm basis on q where it is feasible (on the lifted form alone while M is not formed).
+  if (has_warm && lifted && !lcp.formed())
+    r = &attempt_on(nullptr, lifted, warm_only, q, &warm, warm_factorization);
+  else if (has_warm)
+    r = &attempt(warm_only, q, &warm, warm_factorization);
   // 1b. A crash path on the perturbed q from the warm basis, at most
   //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
   //    step 2's first one: when the polish fails, its solution is kept as the inexact
   //    fallback and step 2 does not solve the same perturbed LCP again from the all-w basis
   //    (it would end at the same basis and fail the same polish).
-  double delta = kLcpPerturbation * lcp.q.lpNorm<Eigen::Infinity>();
+  double delta = kLcpPerturbation * q.lpNorm<Eigen::Infinity>();
   if (has_warm && !solved(r)) {
     LemkeSettings warm_crash = plain;
     warm_crash.crash_start = true;
@@ -169,7 +194,7 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
   //    request when there is a perturbed solution (skip_exact_cold, accept_perturbed).
-  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && inexact)) r = &attempt(exact, lcp.q, nullptr);
+  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && inexact)) r = &attempt(exact, q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;
     out.source = LcpModelSource::perturbed;
@@ -178,10 +203,11 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   //    LCP always has a solution and Lemke's path ends at one in exact arithmetic),
   //    polished on (M, q), else the regularized solution (solved_inaccurate).
   if (!solved(r)) {
-    SparseMatrix Me = lcp.M;
+    const SparseMatrix& M = lcp.lcp().M;
+    SparseMatrix Me = M;
     SparseMatrix I(n, n);
     I.setIdentity();
-    const double m_norm = (lcp.M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
+    const double m_norm = (M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
     Me += (kLcpRegularization * std::max(1.0, m_norm)) * I;
     LcpLiftedForm lifted_e;
     if (lifted) {
@@ -191,11 +217,11 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
     LemkeSettings reg = plain;
     const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
     reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
-    const LemkeSolver& rr = attempt_on(Me, lifted ? &lifted_e : nullptr, reg, lcp.q, nullptr);
+    const LemkeSolver& rr = attempt_on(&Me, lifted ? &lifted_e : nullptr, reg, q, nullptr);
     if (solved(&rr)) {
       polish_on_q(rr, -1);  // sets r when the polish solves (M, q)
       if (!solved(r) &&
-          stewart_trinkle_residual(lcp, rr.result().z) <= kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>()) {
+          stewart_trinkle_residual(lcp.lcp(), rr.result().z) <= kLcpRegularizedResidual * q.lpNorm<Eigen::Infinity>()) {
         r = &rr;
         out.source = LcpModelSource::regularized;
       }
@@ -206,7 +232,7 @@ void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp
   //    its 4 retries, would allow about 250 pivots per unknown in this attempt alone).
   LemkeSettings last = settings;
   if (last.max_pivots == 0) last.max_pivots = exact_cap;
-  if (!solved(r)) r = &attempt(last, lcp.q, nullptr);
+  if (!solved(r)) r = &attempt(last, q, nullptr);
 
   out.used = r;
   const LcpInfo& info = r->result().info;

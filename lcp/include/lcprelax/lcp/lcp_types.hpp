@@ -182,6 +182,9 @@ struct LcpInfo {
   /// lemke_purify.cpp): superbasic z_j driven to 0 or into the basis; not counted in pivots.
   long purification_steps = 0;
   double regularization = 0.0;  ///< ε of the accepted retry on M + εI, 0 if none
+  /// The solver holds M as a matrix: given to setup(M, q, ...), or formed from the lifted
+  /// form when a solve after setup(lifted, q) needed its columns (false: it never did).
+  bool matrix_formed = true;
 };
 
 struct LcpResult {

@@ -102,6 +102,15 @@ class LemkeSolver {
   /// InputError on sizes that do not match, non-finite entries, d ≤ 0, or a form that
   /// does not equal M (two probe vectors, relative 1e-8). A later setup(M, q) drops it.
   void setup(const SparseMatrix& M, const Vector& q, const LcpLiftedForm& lifted);
+  /// M given by its lifted form only, M = J diag(d) Jᵀ + H (n = q.size()); same checks of
+  /// the form. M itself is formed (Eigen sparse products, same values as a Delassus M to
+  /// roundoff) only when the solve needs its columns: a pivot that brings in a z, a crash
+  /// start or purification, the retries, backward(). A warm basis that solves the LCP is
+  /// factorized in the lifted form and checked with w = J (d ∘ Jᵀz) + Hz + q, so a
+  /// simulator step at rest never forms M. The tolerances (pivot tolerance, the retries' ε)
+  /// scale with the bound ‖|J| (d ∘ |J|ᵀ1) + |H| 1‖∞ ≥ ‖M‖∞ instead of ‖M‖∞ itself. With
+  /// the dense method or LemkeSettings::lifted_basis off, M is formed here.
+  void setup(const LcpLiftedForm& lifted, const Vector& q);
   /// New q (same n), keeping M.
   void update_q(const Vector& q);
   /// Basis to try first in the next solve() (size n; true = z_i basic).

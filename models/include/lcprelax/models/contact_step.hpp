@@ -22,7 +22,9 @@
 //   end on a secondary ray or a singular basis by roundoff. solve_lcp_model therefore
 //   tries, cheapest first, with Lemke's own retries only in the last attempt:
 //   1. the warm basis (if given and some z is basic in it: the all-w basis is step 2's cold
-//      start) where its basic solution on q is feasible (no pivots);
+//      start) where its basic solution on q is feasible (no pivots), factorized and checked
+//      in M's lifted form alone: M (and W) are formed only when step 1 fails
+//      (StewartTrinkleLcpSource, lcp_model_attempts.hpp);
 //   1b. a crash path (LemkeSettings::crash_start) from the warm basis on the perturbed q of
 //      step 2 (first pattern), at most kLcpWarmCrashPivotsPerUnknown pivots per unknown,
 //      then the polish of step 2; when the path ends on a ray within its first pivots, the
@@ -258,6 +260,9 @@ struct StewartTrinkleLcp {
 /// the normal diagonal and their erp in q's gap term (normal_gap_rate), and s.lcp_block added
 /// to every contact's own block when enabled (world.hpp ContactLcpBlock).
 StewartTrinkleLcp stewart_trinkle_lcp(const ContactSystem& s, const SparseMatrix& W, double dt);
+
+/// stewart_trinkle_lcp(s, W, dt).q alone (the same numbers, bit for bit), without forming M.
+Vector stewart_trinkle_q(const ContactSystem& s, double dt);
 
 /// The lifted form of stewart_trinkle_lcp(s, delassus(s), dt)'s M (lcp_types.hpp
 /// LcpLiftedForm, for Lemke's sparse basis): M = J diag(minv) Jᵀ + H with J's rows

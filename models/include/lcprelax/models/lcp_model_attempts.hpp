@@ -36,6 +36,30 @@ struct LcpModelAttempts {
   LcpModelAttempts& operator=(const LcpModelAttempts&) = delete;
 };
 
+/// An island's Stewart–Trinkle LCP for run_lcp_model_attempts: q, and M either given or
+/// formed on first use (stewart_trinkle_lcp(s, delassus(s), dt)). With M not yet formed and
+/// a lifted form given, step 1 (the warm basis) runs on the lifted form alone
+/// (LemkeSolver::setup(lifted, q)), so that an island at rest never forms M: forming it,
+/// W = J M⁻¹Jᵀ and its copy into the solver were ~30% of a 500-body pile's step at rest.
+class StewartTrinkleLcpSource {
+ public:
+  /// M given (kept by the caller, who keeps `lcp` alive): every attempt is set up with it.
+  explicit StewartTrinkleLcpSource(const StewartTrinkleLcp& lcp) : given_(&lcp) {}
+  /// q now (stewart_trinkle_q), M on first use; s is kept by reference.
+  StewartTrinkleLcpSource(const ContactSystem& s, double dt);
+  const Vector& q() const { return given_ ? given_->q : q_; }
+  /// The LCP with M (formed now if it was not).
+  const StewartTrinkleLcp& lcp();
+  bool formed() const { return given_ != nullptr; }
+
+ private:
+  const StewartTrinkleLcp* given_ = nullptr;  // the caller's, or own_ once formed
+  const ContactSystem* s_ = nullptr;
+  double dt_ = 0.0;
+  Vector q_;
+  StewartTrinkleLcp own_;
+};
+
 /// Runs the attempts on `lcp` (= stewart_trinkle_lcp(s, ...)) into `out` (cleared first).
 /// `settings` are the caller's (step 5; the earlier steps run them without Lemke's own
 /// retries); `warm` (size nc + 3nf, or empty) is the previous basis. s supplies the
@@ -54,6 +78,12 @@ struct LcpModelAttempts {
 /// `lifted`: lcp.M's lifted form (stewart_trinkle_lifted_form), given to every attempt's
 /// LemkeSolver (the M + εI of step 4 with εI added to its H); nullptr: none.
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
+                            const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
+                            const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
+                            bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr);
+/// The same on an LCP whose M may be formed on first use (StewartTrinkleLcpSource): with a
+/// lifted form, step 1 then does not form it, and the later steps do.
+void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
                             bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr);
