@@ -29,9 +29,10 @@ void ContactWarmTable::clear() {
 
 void ContactWarmTable::finish() {
   // std::sort works in place (no allocation); the order field makes the sort total, so
-  // the merge below sees each key's writes in the order they were made.
-  std::sort(writes_.begin(), writes_.end(),
-            [](const Write& a, const Write& b) { return std::tie(a.key, a.order) < std::tie(b.key, b.order); });
+  // the merge below sees each key's writes in the order they were made. Writes made in key
+  // order (the simulator's, in contact order) are already sorted: one pass checks it.
+  auto less = [](const Write& a, const Write& b) { return std::tie(a.key, a.order) < std::tie(b.key, b.order); };
+  if (!std::is_sorted(writes_.begin(), writes_.end(), less)) std::sort(writes_.begin(), writes_.end(), less);
   keys_.clear();
   entries_.clear();
   keys_.reserve(writes_.size());
@@ -49,6 +50,20 @@ const ContactWarmTable::Entry* ContactWarmTable::find(const ContactKey& key) con
   const auto it = std::lower_bound(keys_.begin(), keys_.end(), key);
   if (it == keys_.end() || *it != key) return nullptr;
   return &entries_[static_cast<std::size_t>(it - keys_.begin())];
+}
+
+void ContactWarmTable::find_sorted(const std::vector<ContactKey>& keys, std::vector<const Entry*>& out) const {
+  out.assign(keys.size(), nullptr);
+  if (std::adjacent_find(keys.begin(), keys.end(), [](const ContactKey& a, const ContactKey& b) { return !(a < b); }) !=
+      keys.end()) {
+    for (std::size_t i = 0; i < keys.size(); ++i) out[i] = find(keys[i]);
+    return;
+  }
+  std::size_t t = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    while (t < keys_.size() && keys_[t] < keys[i]) ++t;
+    if (t < keys_.size() && keys_[t] == keys[i]) out[i] = &entries_[t];
+  }
 }
 
 std::vector<ContactWarmRecord> ContactWarmTable::records() const {

@@ -287,6 +287,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   for (const Contact& c : contacts_) stats.max_penetration = std::max(stats.max_penetration, -c.gap);
   const std::vector<Island>& islands = found.islands;
   const std::vector<ContactKey> keys = contact_keys();
+  warm_.find_sorted(keys, previous_);  // each contact's warm-start entry, or nullptr
   stats.islands = static_cast<int>(islands.size());
   stats.collision_seconds = seconds_since(t0);
 
@@ -348,10 +349,10 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         if (settings_.warm_start) {
           Vector code = Vector::Zero(nc + nf);  // a contact not in warm_: nothing basic
           for (Index c = 0; c < nc; ++c) {
-            if (const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[c]])) code(c) = e->normal;
+            if (const ContactWarmTable::Entry* e = previous_[static_cast<std::size_t>(s.contacts[c])]) code(c) = e->normal;
           }
           for (Index f = 0; f < nf; ++f) {
-            if (const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[s.friction_rows[f]]]))
+            if (const ContactWarmTable::Entry* e = previous_[static_cast<std::size_t>(s.contacts[s.friction_rows[f]])])
               code(nc + f) = e->friction;
           }
           decode_lcp_basis(code, nc, nf, warm);
@@ -366,11 +367,11 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         if (settings_.warm_start) {
           warm.assign(static_cast<std::size_t>(nc + nf), 0);
           for (Index c = 0; c < nc; ++c) {
-            const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[c]]);
+            const ContactWarmTable::Entry* e = previous_[static_cast<std::size_t>(s.contacts[c])];
             warm[c] = !e ? -1 : (e->normal > 0.5 ? 1 : 0);
           }
           for (Index f = 0; f < nf; ++f) {
-            const ContactWarmTable::Entry* e = warm_.find(keys[s.contacts[s.friction_rows[f]]]);
+            const ContactWarmTable::Entry* e = previous_[static_cast<std::size_t>(s.contacts[s.friction_rows[f]])];
             if (!e) continue;
             const int bits = friction_basis_bits(e->friction);
             warm[nc + f] = (bits & kBasisPlus) ? 1 : ((bits & kBasisMinus) ? -1 : 0);
@@ -420,6 +421,11 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   std::vector<bool> in_island(world.bodies.size(), false);
   next_warm_.clear();
   Vector code;
+  // Each contact's codes (NaN: none), written to the table below in contact order, which is
+  // key order (find_contacts' canonical order): then finish() need not sort.
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  warm_normal_.assign(contacts_.size(), none);
+  warm_friction_.assign(contacts_.size(), none);
   for (std::size_t i = 0; i < work.size(); ++i) {
     const ContactSystem& s = work[i].system;
     const ContactSolution& sol = work[i].solution;
@@ -446,9 +452,13 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     // The LCP's final basis, or the convex active-set method's final active states.
     if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       encode_lcp_basis(sol.z_basic, nc, nf, code);
-      for (Index c = 0; c < nc; ++c) next_warm_.set_normal(keys[s.contacts[c]], code(c));
-      for (Index f = 0; f < nf; ++f) next_warm_.set_friction(keys[s.contacts[s.friction_rows[f]]], code(nc + f));
+      for (Index c = 0; c < nc; ++c) warm_normal_[static_cast<std::size_t>(s.contacts[c])] = code(c);
+      for (Index f = 0; f < nf; ++f) warm_friction_[static_cast<std::size_t>(s.contacts[s.friction_rows[f]])] = code(nc + f);
     }
+  }
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    if (!std::isnan(warm_normal_[c])) next_warm_.set_normal(keys[c], warm_normal_[c]);
+    if (!std::isnan(warm_friction_[c])) next_warm_.set_friction(keys[c], warm_friction_[c]);
   }
   next_warm_.finish();
   warm_.swap(next_warm_);

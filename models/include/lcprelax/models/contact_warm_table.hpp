@@ -47,6 +47,10 @@ class ContactWarmTable {
   void finish();
   /// The entry of `key`, or nullptr when the table has none (after finish()).
   const Entry* find(const ContactKey& key) const;
+  /// out[i] = find(keys[i]) for every key (after finish()). Keys in increasing order (as
+  /// find_contacts' contacts give them) take one merge pass, O(keys + size()); other
+  /// orders a find() each.
+  void find_sorted(const std::vector<ContactKey>& keys, std::vector<const Entry*>& out) const;
   /// The entries with their keys, in key order (after finish()).
   std::vector<ContactWarmRecord> records() const;
   /// Replaces the contents by `records` (clear, one write per field, finish): a key listed

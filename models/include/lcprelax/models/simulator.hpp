@@ -228,6 +228,8 @@ class Simulator {
   /// Each contact's part of the last basis or active set (contact_warm_table.hpp), and the
   /// table the step fills for the next one (swapped with it: both keep their capacity).
   ContactWarmTable warm_, next_warm_;
+  std::vector<double> warm_normal_, warm_friction_;  // step(): the step's codes per contact (NaN: none)
+  std::vector<const ContactWarmTable::Entry*> previous_;  // step(): warm_'s entry per contact (find_sorted)
   /// Convex model: each island's phase solvers, keyed by the island's smallest body index
   /// (an island keeps it while its bodies stay together); dropped when no island has it.
   std::map<int, ConvexSolverCache> convex_caches_;
