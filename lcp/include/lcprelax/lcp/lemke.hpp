@@ -109,7 +109,9 @@ class LemkeSolver {
   /// factorized in the lifted form and checked with w = J (d ∘ Jᵀz) + Hz + q, so a
   /// simulator step at rest never forms M. The tolerances (pivot tolerance, the retries' ε)
   /// scale with the bound ‖|J| (d ∘ |J|ᵀ1) + |H| 1‖∞ ≥ ‖M‖∞ instead of ‖M‖∞ itself. With
-  /// the dense method or LemkeSettings::lifted_basis off, M is formed here.
+  /// the dense method or LemkeSettings::lifted_basis off, M is formed here. A backward()
+  /// that forms M changes the solver: do not call it from two threads at once on a solver
+  /// set up this way (result() and solved LCPs' z, w stay as they are).
   void setup(const LcpLiftedForm& lifted, const Vector& q);
   /// New q (same n), keeping M.
   void update_q(const Vector& q);
