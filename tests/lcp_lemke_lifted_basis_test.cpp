@@ -91,10 +91,7 @@ TEST(LemkeLiftedBasis, BackwardMatchesThePlainBasisOnAPile) {
   lifted.warm_start(r.z_basic);
   ASSERT_EQ(plain.solve().info.pivots, 0);
   ASSERT_EQ(lifted.solve().info.pivots, 0);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Vector g(p.lcp.M.rows());
-  for (Index i = 0; i < g.size(); ++i) g(i) = u(rng);
+  const Vector g = test::random_vector(p.lcp.M.rows(), 7);
   const LcpGradient ga = plain.backward(g), gb = lifted.backward(g);
   EXPECT_LE(relative_difference(ga.dq, gb.dq), 1e-8);
   SparseMatrix diff = ga.dM - gb.dM;

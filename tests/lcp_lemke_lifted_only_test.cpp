@@ -6,7 +6,8 @@
 // - a cold solve forms M and takes the path of a solver given M on random contact LCPs
 //   (same status and pivots, z to 1e-8);
 // - backward() after a lifted-only warm start (M formed then) equals the backward of a
-//   solver given M at the same basis, dq and dM;
+//   solver given M at the same basis, dq and dM, and agrees with central differences of
+//   ℓ(q) = Σ z (every solve lifted-only) on a random positive definite LCP;
 // - the dense method forms M at setup and solves as with M;
 // - a form of the wrong size, with a NaN or with d ≤ 0, and a q with a NaN or of another
 //   size than the form, get an InputError naming the problem.
@@ -88,16 +89,43 @@ TEST(LemkeLiftedOnly, BackwardEqualsTheSolverGivenM) {
   lifted_only.warm_start(r.z_basic);
   ASSERT_EQ(with_m.solve().info.pivots, 0);
   ASSERT_EQ(lifted_only.solve().info.pivots, 0);
-  std::mt19937 rng(9);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Vector g(p.lcp.M.rows());
-  for (Index i = 0; i < g.size(); ++i) g(i) = u(rng);
+  const Vector g = test::random_vector(p.lcp.M.rows(), 9);
   const LcpGradient ga = with_m.backward(g), gb = lifted_only.backward(g);
   EXPECT_LE(relative_difference(ga.dq, gb.dq), 1e-12);
   // dM_ij = dq_i z_j on M's pattern: compare as dense matrices (the formed M may store
   // entries that cancel to zero where M's assembly stores none).
   const DenseMatrix da(ga.dM), db(gb.dM);
   EXPECT_LE((da - db).cwiseAbs().maxCoeff(), 1e-12 * std::max(1.0, da.cwiseAbs().maxCoeff()));
+}
+
+TEST(LemkeLiftedOnly, BackwardAgreesWithFiniteDifferences) {
+  // M positive definite (H diagonal): a unique, strictly complementary solution, so the
+  // final basis holds under small changes of q. Every solve is lifted-only.
+  std::mt19937 rng(19);
+  const PileLcp p = test::random_lcp(rng, 30, 12, /*friction_coupling=*/false);
+  LemkeSolver solver(sparse_settings(true));
+  solver.setup(p.lifted, p.lcp.q);
+  const LcpResult& r = solver.solve();
+  ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
+  const Index n = p.lcp.q.size();
+  const LcpGradient an = solver.backward(Vector::Ones(n));  // ℓ(q) = Σ z
+  const double h = 1e-7 * std::max(1.0, p.lcp.q.lpNorm<Eigen::Infinity>());
+  for (unsigned k = 0; k < 3; ++k) {
+    const Vector dir = test::random_vector(n, 100 + k);
+    double sum[2];
+    for (int side = 0; side < 2; ++side) {
+      LemkeSolver s(sparse_settings(true));
+      s.setup(p.lifted, p.lcp.q + (side == 0 ? h : -h) * dir);
+      s.warm_start(r.z_basic);
+      const LcpResult& rs = s.solve();
+      ASSERT_EQ(rs.info.status, LcpStatus::solved);
+      ASSERT_EQ(rs.info.pivots, 0);  // the same basis
+      EXPECT_FALSE(rs.info.matrix_formed);
+      sum[side] = rs.z.sum();
+    }
+    const double fd = (sum[0] - sum[1]) / (2 * h), analytic = an.dq.dot(dir);
+    EXPECT_NEAR(fd, analytic, 1e-6 * std::max(1.0, std::abs(analytic))) << "direction " << k;
+  }
 }
 
 TEST(LemkeLiftedOnly, TheDenseMethodFormsMAtSetup) {

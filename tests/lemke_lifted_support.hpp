@@ -39,6 +39,15 @@ inline LemkeSettings sparse_settings(bool lifted) {
   return st;
 }
 
+// A vector of n entries uniform in [-1, 1) from seed.
+inline Vector random_vector(Index n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector g(n);
+  for (Index i = 0; i < n; ++i) g(i) = u(rng);
+  return g;
+}
+
 inline double relative_difference(const Vector& a, const Vector& b) {
   return (a - b).lpNorm<Eigen::Infinity>() / std::max(1e-300, a.lpNorm<Eigen::Infinity>());
 }
