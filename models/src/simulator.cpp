@@ -454,6 +454,18 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
       encode_lcp_basis(sol.z_basic, nc, nf, code);
       for (Index c = 0; c < nc; ++c) warm_normal_[static_cast<std::size_t>(s.contacts[c])] = code(c);
       for (Index f = 0; f < nf; ++f) warm_friction_[static_cast<std::size_t>(s.contacts[s.friction_rows[f]])] = code(nc + f);
+    } else if (sol.status == ContactStatus::failed) {
+      // A failed island has no basis of its own: its contacts keep the entries this step
+      // started from, so that the next step starts warm from the last basis that solved
+      // rather than cold (a cold Lemke path on a 1,000-body pile's island runs past every
+      // cap, and then the step after it fails the same way).
+      for (Index c = 0; c < nc; ++c)
+        if (const ContactWarmTable::Entry* e = previous_[static_cast<std::size_t>(s.contacts[c])])
+          warm_normal_[static_cast<std::size_t>(s.contacts[c])] = e->normal;
+      for (Index f = 0; f < nf; ++f) {
+        const std::size_t c = static_cast<std::size_t>(s.contacts[s.friction_rows[f]]);
+        if (const ContactWarmTable::Entry* e = previous_[c]) warm_friction_[c] = e->friction;
+      }
     }
   }
   for (std::size_t c = 0; c < contacts_.size(); ++c) {

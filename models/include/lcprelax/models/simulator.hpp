@@ -197,6 +197,8 @@ class Simulator {
   /// convex model's active_set_newton), by contact identity (ContactKey: body a, body b,
   /// static kind, static index, ordinal among the pair's contacts) in the codes of
   /// lcp_basis_codes.hpp: what the next step warm-starts from. Empty before the first step.
+  /// A contact of a failed island (StepStats::failed_islands) keeps the entry that its
+  /// step started from, if it had one: the next step starts from the last basis that solved.
   std::vector<ContactWarmRecord> warm_start_state() const { return warm_.records(); }
   /// Replaces that state, e.g. by one saved with a scene file (scene_json.hpp
   /// "warm_start"): the next step starts from it as from the step that produced it. Throws
