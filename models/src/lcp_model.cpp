@@ -210,14 +210,14 @@ Vector lcp_perturbation_pattern(const ContactSystem& s, int seed) {
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm,
                                 const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
-                                bool accept_perturbed) {
+                                bool accept_perturbed, bool warm_from_regularized) {
   const Index nc = s.num_contacts(), nf = s.num_friction();
   // M is formed only when step 1 (the warm basis, on the lifted form) does not solve.
   StewartTrinkleLcpSource lcp(s, dt);
   const LcpLiftedForm lifted = stewart_trinkle_lifted_form(s, dt);
   LcpModelAttempts a;
   run_lcp_model_attempts(s, lcp, settings, warm, a, /*skip_exact_cold=*/false, warm_factorization, accept_perturbed,
-                         &lifted);
+                         &lifted, warm_from_regularized);
   const LcpResult& r = a.used->result();
   ContactSolution out;
   out.status = a.status;
@@ -226,6 +226,7 @@ ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSe
   out.z_basic = r.z_basic;
   out.warm_started = a.warm_started;
   out.perturbed = has_solution(a.status) && a.source == LcpModelSource::perturbed;
+  out.regularized = has_solution(a.status) && a.source == LcpModelSource::regularized;
   if (!has_solution(out.status)) {
     out.residual = r.info.complementarity;
     return out;

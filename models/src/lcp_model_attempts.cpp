@@ -54,15 +54,16 @@ const StewartTrinkleLcp& StewartTrinkleLcpSource::lcp() {
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
-                            bool accept_perturbed, const LcpLiftedForm* lifted) {
+                            bool accept_perturbed, const LcpLiftedForm* lifted, bool warm_from_regularized) {
   StewartTrinkleLcpSource source(lcp);
-  run_lcp_model_attempts(s, source, settings, warm, out, skip_exact_cold, warm_factorization, accept_perturbed, lifted);
+  run_lcp_model_attempts(s, source, settings, warm, out, skip_exact_cold, warm_factorization, accept_perturbed, lifted,
+                         warm_from_regularized);
 }
 
 void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization,
-                            bool accept_perturbed, const LcpLiftedForm* lifted) {
+                            bool accept_perturbed, const LcpLiftedForm* lifted, bool warm_from_regularized) {
   out.solvers.clear();
   out.used = nullptr;
   out.source = LcpModelSource::exact;
@@ -132,7 +133,8 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   // fails along u (the homotopy from q + θu back to q): r when a polish solves the LCP, else
   // kept as the inexact fallback.
   const LemkeSolver* inexact = nullptr;
-  auto polish_on_q = [&](const LemkeSolver& rp, int seed) {
+  // The polished solver when a polish solves (M, q), else nullptr.
+  auto polished_on_q = [&](const LemkeSolver& rp, int seed) -> const LemkeSolver* {
     const LemkeSolver* polished = &attempt(polish, q, &rp.result().z_basic);
     if (!solved(polished) && seed >= 0) {  // the homotopy along the perturbation (lcp_types.hpp)
       LemkeSettings along = polish;
@@ -140,7 +142,10 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
       along.covering = pattern(seed);
       polished = &attempt(along, q, &rp.result().z_basic);
     }
-    if (solved(polished)) r = polished;
+    return solved(polished) ? polished : nullptr;
+  };
+  auto polish_on_q = [&](const LemkeSolver& rp, int seed) {
+    if (const LemkeSolver* polished = polished_on_q(rp, seed)) r = polished;
     else inexact = &rp;
   };
   // 1. The warm basis on q where it is feasible (on the lifted form alone while M is not formed).
@@ -154,19 +159,23 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   //    fallback and step 2 does not solve the same perturbed LCP again from the all-w basis
   //    (it would end at the same basis and fail the same polish).
   double delta = kLcpPerturbation * q.lpNorm<Eigen::Infinity>();
-  if (has_warm && !solved(r)) {
-    LemkeSettings warm_crash = plain;
-    warm_crash.crash_start = true;
-    warm_crash.crash_cold_fallback = false;  // step 2 is the cold start
-    warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
-    // An early ray: the contacts its pivots touched are taken back in the warm basis and the
-    // path runs again (kLcpWarmRayRestarts; reset_warm_contacts_on_ray).
-    const long ray_pivots = static_cast<long>(kLcpWarmRayPivotsPerUnknown * static_cast<double>(n));
-    std::vector<Index> trace;
+  // The crash path from the warm basis on (M, rhs) (M null: lcp's M), capped at
+  // kLcpWarmCrashPivotsPerUnknown pivots per unknown. An early ray: the contacts its pivots
+  // touched are taken back in the warm basis and the path runs again (kLcpWarmRayRestarts;
+  // reset_warm_contacts_on_ray). Returns the last path's solver.
+  LemkeSettings warm_crash = plain;
+  warm_crash.crash_start = true;
+  warm_crash.crash_cold_fallback = false;  // the cold starts are later steps
+  warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
+  const long ray_pivots = static_cast<long>(kLcpWarmRayPivotsPerUnknown * static_cast<double>(n));
+  std::vector<Index> trace;
+  auto warm_crash_path = [&](const SparseMatrix* M, const LcpLiftedForm* form, const Vector& rhs) {
+    if (!M) M = &lcp.lcp().M;
+    trace.clear();
     trace.reserve(static_cast<std::size_t>(2 * ray_pivots + 2));
     std::vector<bool> start = warm;
     std::vector<signed char> level;
-    const LemkeSolver* rc = &attempt(warm_crash, perturbed(delta, 0), &start, nullptr, &trace, ray_pivots);
+    const LemkeSolver* rc = &attempt_on(M, form, warm_crash, rhs, &start, nullptr, &trace, ray_pivots);
     long rayed = 0;  // pivots of the paths that ended on an early ray
     for (int k = 0;; ++k) {
       const LcpInfo& info = rc->result().info;
@@ -175,53 +184,90 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
       if (!lcp_warm_ray_restart_allowed(k, rayed, n)) break;
       if (level.empty()) level.assign(static_cast<std::size_t>(nc), 0);
       if (reset_warm_contacts_on_ray(s, trace, level, start) == 0) break;
-      if (std::find(start.begin(), start.end(), true) == start.end()) break;  // all-w: step 2's cold start
+      if (std::find(start.begin(), start.end(), true) == start.end()) break;  // all-w: a cold start
       trace.clear();
-      rc = &attempt(warm_crash, perturbed(delta, 0), &start, nullptr, &trace, ray_pivots);
+      rc = &attempt_on(M, form, warm_crash, rhs, &start, nullptr, &trace, ray_pivots);
     }
+    return rc;
+  };
+  if (has_warm && !solved(r)) {
+    const LemkeSolver* rc = warm_crash_path(nullptr, lifted, perturbed(delta, 0));
     if (solved(rc) && accept_perturbed)
       inexact = rc;  // kept as it is: steps 2 and 3 are skipped below
     else if (solved(rc))
       polish_on_q(*rc, 0);
   }
+  // M + εI (and its lifted form, εI added to H), built on first use: steps 1c and 4.
+  SparseMatrix Me;
+  LcpLiftedForm lifted_e;
+  auto regularized = [&]() -> const SparseMatrix& {
+    if (Me.rows() == n) return Me;
+    const SparseMatrix& M = lcp.lcp().M;
+    Me = M;
+    SparseMatrix I(n, n);
+    I.setIdentity();
+    const double m_norm = (M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
+    const double eps = kLcpRegularization * std::max(1.0, m_norm);
+    Me += eps * I;
+    if (lifted) {
+      lifted_e = *lifted;
+      lifted_e.H += eps * I;
+    }
+    return Me;
+  };
+  // A solution of M + εI that no polish turned into one of (M, q), kept when its residual
+  // on (M, q) is small enough (source regularized).
+  auto regularized_answer = [&](const LemkeSolver& rr) {
+    return stewart_trinkle_residual(lcp.lcp(), rr.result().z) <= kLcpRegularizedResidual * q.lpNorm<Eigen::Infinity>();
+  };
+  const LemkeSolver* regularized_fallback = nullptr;  // step 1c's
+  // 1c. M + εI from the warm basis: the crash path of step 1b (with its ray restarts) on
+  //     M + εI, then as step 4 (polish on (M, q), else the regularized fallback). Early, for
+  //     a warm basis that solved M + εI (or belongs to a failed step): such a basis is
+  //     often singular in M (a settled pile loads more contacts than its bodies have degrees
+  //     of freedom), so step 1b cannot start from it, while on M + εI it is a short path from
+  //     this step's solution. Else last, when every other attempt failed.
+  bool warm_regularized_tried = false;
+  auto warm_regularized = [&] {
+    warm_regularized_tried = true;
+    const LemkeSolver* rr = warm_crash_path(&regularized(), lifted ? &lifted_e : nullptr, q);
+    if (!solved(rr)) return;
+    if (const LemkeSolver* polished = polished_on_q(*rr, -1)) r = polished;
+    else if (regularized_answer(*rr)) regularized_fallback = rr;
+  };
+  if (has_warm && warm_from_regularized && !solved(r) && !inexact) warm_regularized();
   // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
   LemkeSettings cold = plain;
   cold.max_pivots = exact.max_pivots;
-  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact; ++seed, delta *= 10.0) {
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact && !(accept_perturbed && regularized_fallback);
+       ++seed, delta *= 10.0) {
     const LemkeSolver& rp = attempt(cold, perturbed(delta, seed), nullptr);
     if (solved(&rp)) polish_on_q(rp, seed);
   }
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
   //    request when there is a perturbed solution (skip_exact_cold, accept_perturbed).
-  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && inexact)) r = &attempt(exact, q, nullptr);
+  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && (inexact || regularized_fallback)))
+    r = &attempt(exact, q, nullptr);
   if (!solved(r) && inexact) {
     r = inexact;
     out.source = LcpModelSource::perturbed;
+  }
+  if (!solved(r) && regularized_fallback) {
+    r = regularized_fallback;
+    out.source = LcpModelSource::regularized;
   }
   // 4. No perturbed solution: M + εI from the all-w basis (strictly copositive, so its
   //    LCP always has a solution and Lemke's path ends at one in exact arithmetic),
   //    polished on (M, q), else the regularized solution (solved_inaccurate).
   if (!solved(r)) {
-    const SparseMatrix& M = lcp.lcp().M;
-    SparseMatrix Me = M;
-    SparseMatrix I(n, n);
-    I.setIdentity();
-    const double m_norm = (M.cwiseAbs() * Vector::Ones(n)).maxCoeff();  // ‖M‖∞ (n > 0 here)
-    Me += (kLcpRegularization * std::max(1.0, m_norm)) * I;
-    LcpLiftedForm lifted_e;
-    if (lifted) {
-      lifted_e = *lifted;
-      lifted_e.H += (kLcpRegularization * std::max(1.0, m_norm)) * I;
-    }
     LemkeSettings reg = plain;
     const long reg_cap = 1 + static_cast<long>(kLcpRegularizedPivotsPerUnknown * static_cast<double>(n));
     reg.max_pivots = plain.max_pivots > 0 ? std::min(plain.max_pivots, reg_cap) : reg_cap;
-    const LemkeSolver& rr = attempt_on(&Me, lifted ? &lifted_e : nullptr, reg, q, nullptr);
+    const LemkeSolver& rr = attempt_on(&regularized(), lifted ? &lifted_e : nullptr, reg, q, nullptr);
     if (solved(&rr)) {
-      polish_on_q(rr, -1);  // sets r when the polish solves (M, q)
-      if (!solved(r) &&
-          stewart_trinkle_residual(lcp.lcp(), rr.result().z) <= kLcpRegularizedResidual * q.lpNorm<Eigen::Infinity>()) {
+      if (const LemkeSolver* polished = polished_on_q(rr, -1)) r = polished;
+      else if (regularized_answer(rr)) {
         r = &rr;
         out.source = LcpModelSource::regularized;
       }
@@ -233,6 +279,16 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   LemkeSettings last = settings;
   if (last.max_pivots == 0) last.max_pivots = exact_cap;
   if (!solved(r)) r = &attempt(last, q, nullptr);
+  // 1c as the last resort (not run early).
+  if (!solved(r) && has_warm && !warm_regularized_tried) {
+    const LemkeSolver* failed = r;
+    warm_regularized();
+    if (!solved(r) && regularized_fallback) {
+      r = regularized_fallback;
+      out.source = LcpModelSource::regularized;
+    }
+    if (!solved(r)) r = failed;  // the failure reported is step 5's
+  }
 
   out.used = r;
   const LcpInfo& info = r->result().info;

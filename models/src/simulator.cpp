@@ -359,8 +359,9 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
         }
         const LcpIslandMemory* memory = lcp_memory[i];
         const bool accept_perturbed = memory && !lcp_retry_exact(memory->perturbed_steps);
+        const bool warm_from_regularized = memory && memory->regularized_or_failed;
         wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm, memory ? memory->factorization : nullptr,
-                                      accept_perturbed);
+                                      accept_perturbed, warm_from_regularized);
       } else if (settings_.convex_solver == ConvexSolver::active_set_newton) {
         const Index nc = s.num_contacts(), nf = s.num_friction();
         std::vector<signed char> warm;
@@ -448,7 +449,11 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     }
     const Index nc = s.num_contacts(), nf = s.num_friction();
     if (sol.newton_fallback) ++stats.newton_fallbacks;
-    if (lcp_memory[i]) lcp_memory[i]->perturbed_steps = sol.perturbed ? lcp_memory[i]->perturbed_steps + 1 : 0;
+    if (lcp_memory[i]) {  // inexact or failed: the next step may take an inexact answer
+      const bool failed = sol.status == ContactStatus::failed;
+      lcp_memory[i]->perturbed_steps = sol.perturbed || sol.regularized || failed ? lcp_memory[i]->perturbed_steps + 1 : 0;
+      lcp_memory[i]->regularized_or_failed = sol.regularized || failed;
+    }
     // The LCP's final basis, or the convex active-set method's final active states.
     if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       encode_lcp_basis(sol.z_basic, nc, nf, code);

@@ -34,6 +34,19 @@
 //      fallback and step 2 is skipped (its first pattern is the same perturbed LCP: the cold
 //      path would end at the same basis and fail the same polish; on a 500-body pile this
 //      halved the pivots per step, bench/README.md);
+//   1c. when step 1b found no solution and the warm basis is that of a regularized answer
+//      (step 4 below) or of a failed step (solve_lcp_model's warm_from_regularized; the
+//      simulator remembers it per island): step 1b's crash path, with its ray restarts, on
+//      M + εI (step 4's regularization) from the warm basis, then step 4's polish on (M, q);
+//      failing that, its solution is kept as the regularized fallback (step 4's residual
+//      bound), taken after steps 2 and 3 fail, or at once with accept_perturbed. A settled
+//      pile loads more contacts than its bodies have degrees of freedom: a regularized
+//      answer's basis is then singular in M, step 1b cannot start from it, and the cold
+//      paths on 12,000–16,000 unknowns run to their caps, while on M + εI the same basis
+//      solves the next step in 0–200 pivots. After an exact or perturbed answer 1c runs
+//      last instead (step 6): its paths on M + εI refactorize about three times as often as
+//      on M (the bases of M + εI are near-singular where M's are singular), and on 500-body
+//      drops step 2 usually solves exactly where 1c would give an inexact answer;
 //   2. Lemke from the all-w basis on the perturbed q + δu, δ = kLcpPerturbation·‖q‖∞,
 //      u_i ∈ [½, 1) pseudo-random per row (deterministic, lcp_perturbation_pattern): distinct
 //      positive offsets break the ties of the degenerate pivots (the perturbation that the
@@ -50,7 +63,8 @@
 //      piles the first polish fails on about half of the steps (a ray or a singular basis
 //      after 100–900 pivots) and the second rescues about a third of those. Up to
 //      kLcpPerturbationSeeds patterns, δ ten times larger for each next one;
-//   3. when no polish succeeded: Lemke on q from the all-w basis, at most
+//   3. when no polish succeeded: Lemke on q from the all-w basis (skipped when the caller
+//      accepts an inexact answer and step 1b or 1c gave one: accept_perturbed), at most
 //      kLcpExactPivotsPerUnknown pivots per unknown; failing that, a perturbed solution is
 //      kept (status solved_inaccurate): each contact may approach or slip at up to δ (m/s)
 //      unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes
@@ -70,8 +84,10 @@
 //      Complementarity Problem", 1992, §3.8 and §4.4);
 //   5. Lemke with the caller's settings (covering-vector and M + εI retries; costly on
 //      large islands), each solve capped at kLcpExactPivotsPerUnknown pivots per unknown
-//      unless settings.max_pivots is set. So every attempt is bounded: at most about 40
-//      pivots per unknown per island and step in all.
+//      unless settings.max_pivots is set;
+//   6. when nothing solved and step 1c has not run: step 1c, whose regularized answer then
+//      replaces the failure. So every attempt is bounded: at most about 45 pivots per
+//      unknown per island and step in all.
 //   ContactSolution::warm_started is set only when step 1 solved it (zero pivots).
 //   ContactSolution::residual is always that of the unperturbed LCP (≤ δ after step 2,
 //   ≤ kLcpRegularizedResidual·‖q‖∞ after step 4).
@@ -180,7 +196,7 @@ inline bool lcp_warm_ray_restart_allowed(int restarts, long ray_pivots, Index n)
 constexpr long kLcpExactPivotsPerUnknown = 3;
 
 /// A jammed island at rest can have no exact solution that Lemke reaches: every step ends
-/// on the perturbed answer, after the polish (step 1b) and the exact cold start (step 3)
+/// on the perturbed (or regularized) answer, after the polish (step 1b) and the exact cold start (step 3)
 /// failed again (200-body pile at 1.9e-6 m/s: 180 ms per step, of which 110 ms in step 3,
 /// against 3 ms for a step solved by its warm basis). After such a step the simulator
 /// takes step 1b's perturbed answer as it is (solve_lcp_model's accept_perturbed), except
@@ -243,6 +259,7 @@ struct ContactSolution {
   std::vector<bool> z_basic;  ///< LCP final basis (warm start of the next step)
   bool warm_started = false;  ///< LCP: the warm basis solved it in zero pivots
   bool perturbed = false;     ///< LCP: the answer solves q + δu (status solved_inaccurate)
+  bool regularized = false;   ///< LCP: the answer solves M + εI (status solved_inaccurate)
   /// Convex model with ConvexSolver::active_set_newton: a phase did not converge by the
   /// active-set method and the interior point's answer (all of it) was used.
   bool newton_fallback = false;
@@ -288,11 +305,13 @@ Vector lcp_perturbation_pattern(const ContactSystem& s, int seed);
 /// pivots, within roundoff otherwise (lemke.hpp). Not to be shared between islands solved
 /// at the same time.
 /// `accept_perturbed`: step 1b's answer on q + δu is taken without the polish and the later
-/// attempts (run_lcp_model_attempts; kLcpExactRetrySteps says when the simulator asks).
+/// attempts, and step 1c's on M + εI without the later attempts (run_lcp_model_attempts;
+/// kLcpExactRetrySteps says when the simulator asks). `warm_from_regularized`: `warm` is the
+/// basis of a regularized answer or of a failed step, and step 1c runs early.
 ContactSolution solve_lcp_model(const ContactSystem& s, double dt, const LemkeSettings& settings,
                                 const std::vector<bool>& warm = {},
                                 const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
-                                bool accept_perturbed = false);
+                                bool accept_perturbed = false, bool warm_from_regularized = false);
 
 /// How the convex model's QPs are posed (models/convex_phase_qp.hpp): `dual` in
 /// the impulses λ with the Delassus matrix W = J M⁻¹ Jᵀ; `lifted` in (Δv, λ) with the

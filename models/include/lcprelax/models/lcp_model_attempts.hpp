@@ -72,21 +72,25 @@ class StewartTrinkleLcpSource {
 /// `warm_factorization`: step 1's solver factorizes the warm basis in it (solve_lcp_model).
 /// `accept_perturbed`: when step 1b solves q + δu, that answer is taken without its polish
 /// on q and without steps 2–5 (source perturbed, solved_inaccurate), and step 3 is skipped
-/// as with skip_exact_cold when step 2 gave a perturbed answer: for a caller whose
-/// previous LCP of this island ended perturbed after those had failed (a jammed pile at
-/// rest; contact_step.hpp kLcpExactRetrySteps).
+/// as with skip_exact_cold when step 2 gave a perturbed answer or step 1c a regularized
+/// one: for a caller whose previous LCP of this island ended perturbed or regularized after
+/// those had failed (a jammed pile at rest; contact_step.hpp kLcpExactRetrySteps).
+/// `warm_from_regularized`: `warm` is the basis of a regularized answer (M + εI) or of a
+/// failed step's carried entries: step 1c runs right after step 1b fails, instead of last.
 /// `lifted`: lcp.M's lifted form (stewart_trinkle_lifted_form), given to every attempt's
 /// LemkeSolver (the M + εI of step 4 with εI added to its H); nullptr: none.
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
-                            bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr);
+                            bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr,
+                            bool warm_from_regularized = false);
 /// The same on an LCP whose M may be formed on first use (StewartTrinkleLcpSource): with a
 /// lifted form, step 1 then does not form it, and the later steps do.
 void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp, const LemkeSettings& settings,
                             const std::vector<bool>& warm, LcpModelAttempts& out, bool skip_exact_cold = false,
                             const std::shared_ptr<LemkeSharedFactorization>& warm_factorization = {},
-                            bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr);
+                            bool accept_perturbed = false, const LcpLiftedForm* lifted = nullptr,
+                            bool warm_from_regularized = false);
 
 /// Takes back, in the warm basis `warm` (z_basic of the LCP z = [λn, β⁺, β⁻, γ] of s, size
 /// n = nc + 3nf), the contacts that a crash path ending on a ray touched: every contact

@@ -237,10 +237,13 @@ class Simulator {
   std::map<int, ConvexSolverCache> convex_caches_;
   /// LCP model, per island (matched by its smallest body like convex_caches_): the
   /// factorization of its warm basis (LemkeSharedFactorization), and how many consecutive
-  /// steps ended on a perturbed answer (contact_step.hpp kLcpExactRetrySteps).
+  /// steps ended on a perturbed or regularized answer or failed (contact_step.hpp
+  /// kLcpExactRetrySteps), and whether the last one was regularized or failed (its warm
+  /// basis then runs step 1c early: solve_lcp_model's warm_from_regularized).
   struct LcpIslandMemory {
     std::shared_ptr<LemkeSharedFactorization> factorization = make_lemke_shared_factorization();
     int perturbed_steps = 0;
+    bool regularized_or_failed = false;
   };
   std::map<int, LcpIslandMemory> lcp_islands_;
 };

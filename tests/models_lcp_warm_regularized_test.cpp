@@ -1,0 +1,104 @@
+// Step 1c of the lcp model (contact_step.hpp): where step 1b (the crash path on M from the
+// warm basis) finds nothing, M + εI is solved from the warm basis before any cold start.
+// A warm basis that came from a regularized answer is a basis of M + εI; on M it may be
+// singular or its LCP infeasible, so step 1b cannot use it, while on M + εI it solves in a
+// few pivots.
+//
+// Step 1c runs only for a warm basis from an inexact or failed answer (warm_from_regularized).
+//
+// Scene: tests/models_lcp_regularized_test.cpp's wedged box with a q bias b = −1e-6 m/s on
+// its normal rows, whose LCP on M has no solution: the cold attempts end with step 4's
+// regularized answer. Expected, warm-started from that answer's basis:
+// - the answer is again regularized (solved_inaccurate, residual within
+//   kLcpRegularizedResidual·‖q‖∞), found from the warm basis on M + εI (step 1c; step 4
+//   is a cold path), kept after steps 2 and 3 fail;
+// - with accept_perturbed (an island whose last answer was inexact) steps 2 and 3 are
+//   skipped: fewer attempts than without, and fewer pivots than the cold attempts took;
+// - without warm_from_regularized step 1c runs last (step 6), when everything else failed:
+//   with the caller's max_pivots = 1 every cold attempt stops at once (1b and 1c are capped
+//   by kLcpWarmCrashPivotsPerUnknown alone), and the answer is 1c's regularized one; without
+//   a warm basis the same settings fail;
+// - the same z as the cold attempts' regularized answer (M + εI's solution), to 1e-7
+//   relative: z grows like |b|/ε, and M + εI's condition like 1/ε (ε = 1e-8 relative).
+#include <lcprelax/models/contact_step.hpp>
+#include <lcprelax/models/contact_system.hpp>
+#include <lcprelax/models/lcp_model_attempts.hpp>
+
+#include "lcp_wedge_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace lcprelax {
+namespace {
+
+constexpr double kDt = 1e-2;
+
+TEST(LcpWarmRegularized, ARegularizedBasisRestartsOnMPlusEpsilonI) {
+  const ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
+  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
+  const double qn = lcp.q.lpNorm<Eigen::Infinity>();
+  LcpModelAttempts cold;
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
+  ASSERT_EQ(cold.source, LcpModelSource::regularized) << cold.message;
+  ASSERT_FALSE(cold.used->result().info.crash_started) << "step 4 is a cold path";
+  const std::vector<bool> warm = cold.used->result().z_basic;
+  const Vector z_cold = cold.used->result().z;
+
+  std::size_t attempts_without = 0;
+  for (const bool accept : {false, true}) {
+    SCOPED_TRACE(accept ? "accept_perturbed" : "every attempt");
+    LcpModelAttempts w;
+    run_lcp_model_attempts(s, lcp, LemkeSettings{}, warm, w, false, {}, accept, nullptr, /*warm_from_regularized=*/true);
+    EXPECT_EQ(w.status, ContactStatus::solved_inaccurate) << w.message;
+    ASSERT_EQ(w.source, LcpModelSource::regularized) << w.message;
+    const LcpInfo& info = w.used->result().info;
+    EXPECT_TRUE(info.warm_started || info.crash_started) << "step 1c: from the warm basis, not step 4's cold path";
+    EXPECT_LE(stewart_trinkle_residual(lcp, w.used->result().z), kLcpRegularizedResidual * qn);
+    if (accept) EXPECT_LT(w.pivots, cold.pivots);  // without it steps 2 and 3 run as well
+    EXPECT_LE((w.used->result().z - z_cold).lpNorm<Eigen::Infinity>(), 1e-7 * z_cold.lpNorm<Eigen::Infinity>());
+    if (!accept) attempts_without = w.solvers.size();
+    else EXPECT_LT(w.solvers.size(), attempts_without) << "step 3 skipped";
+  }
+  // Without warm_from_regularized (the warm basis of an exact answer) step 1c does not run: the
+  // answer is step 4's, from the all-w basis.
+  LcpModelAttempts plain;
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, warm, plain);
+  ASSERT_EQ(plain.source, LcpModelSource::regularized) << plain.message;
+  EXPECT_FALSE(plain.used->result().info.warm_started || plain.used->result().info.crash_started);
+}
+
+TEST(LcpWarmRegularized, StepSixTurnsAFailureIntoTheRegularizedAnswer) {
+  const ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
+  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
+  LcpModelAttempts cold;
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
+  ASSERT_EQ(cold.source, LcpModelSource::regularized) << cold.message;
+  const std::vector<bool> warm = cold.used->result().z_basic;
+
+  LemkeSettings one_pivot;
+  one_pivot.max_pivots = 1;
+  LcpModelAttempts failed;
+  run_lcp_model_attempts(s, lcp, one_pivot, {}, failed);
+  EXPECT_EQ(failed.status, ContactStatus::failed) << failed.message;
+
+  LcpModelAttempts last;
+  run_lcp_model_attempts(s, lcp, one_pivot, warm, last);
+  EXPECT_EQ(last.status, ContactStatus::solved_inaccurate) << last.message;
+  ASSERT_EQ(last.source, LcpModelSource::regularized) << last.message;
+  const LcpInfo& info = last.used->result().info;
+  EXPECT_TRUE(info.warm_started || info.crash_started);
+  // 1c ran after every other attempt had failed (the ones after it are its polishes).
+  std::size_t before = 0;
+  for (const LemkeSolver& x : last.solvers) {
+    if (&x == last.used) break;
+    EXPECT_FALSE(has_solution(x.result().info.status)) << "attempt " << before;
+    ++before;
+  }
+  EXPECT_GE(before, 5u) << "steps 1, 1b, 2, 3, 4 and 5 before it";
+  EXPECT_LE(stewart_trinkle_residual(lcp, last.used->result().z), kLcpRegularizedResidual * lcp.q.lpNorm<Eigen::Infinity>());
+}
+
+}  // namespace
+}  // namespace lcprelax
