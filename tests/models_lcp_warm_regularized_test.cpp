@@ -11,9 +11,10 @@
 // regularized answer. Expected, warm-started from that answer's basis:
 // - the answer is again regularized (solved_inaccurate, residual within
 //   kLcpRegularizedResidual·‖q‖∞), found from the warm basis on M + εI (step 1c; step 4
-//   is a cold path), kept after steps 2 and 3 fail;
-// - with accept_perturbed (an island whose last answer was inexact) steps 2 and 3 are
-//   skipped: fewer attempts than without, and fewer pivots than the cold attempts took;
+//   is a cold path), step 2 skipped, kept when step 3 fails: fewer pivots than the cold
+//   attempts took;
+// - with accept_perturbed (an island whose last answer was inexact) step 3 is skipped as
+//   well: fewer attempts than without;
 // - without warm_from_regularized step 1c runs last (step 6), when everything else failed:
 //   with the caller's max_pivots = 1 every cold attempt stops at once (1b and 1c are capped
 //   by kLcpWarmCrashPivotsPerUnknown alone), and the answer is 1c's regularized one; without
@@ -56,7 +57,7 @@ TEST(LcpWarmRegularized, ARegularizedBasisRestartsOnMPlusEpsilonI) {
     const LcpInfo& info = w.used->result().info;
     EXPECT_TRUE(info.warm_started || info.crash_started) << "step 1c: from the warm basis, not step 4's cold path";
     EXPECT_LE(stewart_trinkle_residual(lcp, w.used->result().z), kLcpRegularizedResidual * qn);
-    if (accept) EXPECT_LT(w.pivots, cold.pivots);  // without it steps 2 and 3 run as well
+    EXPECT_LT(w.pivots, cold.pivots);
     EXPECT_LE((w.used->result().z - z_cold).lpNorm<Eigen::Infinity>(), 1e-7 * z_cold.lpNorm<Eigen::Infinity>());
     if (!accept) attempts_without = w.solvers.size();
     else EXPECT_LT(w.solvers.size(), attempts_without) << "step 3 skipped";

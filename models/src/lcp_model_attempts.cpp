@@ -236,10 +236,11 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
     else if (regularized_answer(*rr)) regularized_fallback = rr;
   };
   if (has_warm && warm_from_regularized && !solved(r) && !inexact) warm_regularized();
-  // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q.
+  // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q. Skipped
+  //    after step 1b's or 1c's inexact answer (as step 1b's: its paths would end there too).
   LemkeSettings cold = plain;
   cold.max_pivots = exact.max_pivots;
-  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact && !(accept_perturbed && regularized_fallback);
+  for (int seed = 0; seed < kLcpPerturbationSeeds && !solved(r) && !inexact && !regularized_fallback;
        ++seed, delta *= 10.0) {
     const LemkeSolver& rp = attempt(cold, perturbed(delta, seed), nullptr);
     if (solved(&rp)) polish_on_q(rp, seed);

@@ -39,7 +39,8 @@
 //      simulator remembers it per island): step 1b's crash path, with its ray restarts, on
 //      M + εI (step 4's regularization) from the warm basis, then step 4's polish on (M, q);
 //      failing that, its solution is kept as the regularized fallback (step 4's residual
-//      bound), taken after steps 2 and 3 fail, or at once with accept_perturbed. A settled
+//      bound), and step 2 is skipped (as after 1b's perturbed answer); it is taken when
+//      step 3 fails, or at once with accept_perturbed. A settled
 //      pile loads more contacts than its bodies have degrees of freedom: a regularized
 //      answer's basis is then singular in M, step 1b cannot start from it, and the cold
 //      paths on 12,000–16,000 unknowns run to their caps, while on M + εI the same basis
