@@ -190,13 +190,6 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
     }
     return rc;
   };
-  if (has_warm && !solved(r)) {
-    const LemkeSolver* rc = warm_crash_path(nullptr, lifted, perturbed(delta, 0));
-    if (solved(rc) && accept_perturbed)
-      inexact = rc;  // kept as it is: steps 2 and 3 are skipped below
-    else if (solved(rc))
-      polish_on_q(*rc, 0);
-  }
   // M + εI (and its lifted form, εI added to H), built on first use: steps 1c and 4.
   SparseMatrix Me;
   LcpLiftedForm lifted_e;
@@ -222,11 +215,13 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   };
   const LemkeSolver* regularized_fallback = nullptr;  // step 1c's
   // 1c. M + εI from the warm basis: the crash path of step 1b (with its ray restarts) on
-  //     M + εI, then as step 4 (polish on (M, q), else the regularized fallback). Early, for
-  //     a warm basis that solved M + εI (or belongs to a failed step): such a basis is
-  //     often singular in M (a settled pile loads more contacts than its bodies have degrees
-  //     of freedom), so step 1b cannot start from it, while on M + εI it is a short path from
-  //     this step's solution. Else last, when every other attempt failed.
+  //     M + εI, then as step 4 (polish on (M, q), else the regularized fallback). First, before
+  //     step 1b, for a warm basis that solved M + εI (or belongs to a failed step): such a
+  //     basis is often singular in M (a settled pile loads more contacts than its bodies have
+  //     degrees of freedom), or near it, so step 1b cannot start from it or wanders from it
+  //     (a 1,000-body pile: 61,101 pivots to its cap, a refactorization every 3, 240 s),
+  //     while on M + εI, the LCP it solved, it is a short path from this step's solution.
+  //     Else last, when every other attempt failed.
   bool warm_regularized_tried = false;
   auto warm_regularized = [&] {
     warm_regularized_tried = true;
@@ -235,7 +230,15 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
     if (const LemkeSolver* polished = polished_on_q(*rr, -1)) r = polished;
     else if (regularized_answer(*rr)) regularized_fallback = rr;
   };
-  if (has_warm && warm_from_regularized && !solved(r) && !inexact) warm_regularized();
+  if (has_warm && warm_from_regularized && !solved(r)) warm_regularized();
+  // 1b (after 1c where 1c runs first).
+  if (has_warm && !solved(r) && !regularized_fallback) {
+    const LemkeSolver* rc = warm_crash_path(nullptr, lifted, perturbed(delta, 0));
+    if (solved(rc) && accept_perturbed)
+      inexact = rc;  // kept as it is: steps 2 and 3 are skipped below
+    else if (solved(rc))
+      polish_on_q(*rc, 0);
+  }
   // 2. Perturbed q + δu from the all-w basis (capped as step 3), polished on q. Skipped
   //    after step 1b's or 1c's inexact answer (as step 1b's: its paths would end there too).
   LemkeSettings cold = plain;
