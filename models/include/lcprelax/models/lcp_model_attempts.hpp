@@ -1,5 +1,5 @@
 #pragma once
-// The attempts of the lcp model on one island's Stewart–Trinkle LCP (steps 1–5 of
+// The attempts of the lcp model on one island's Stewart–Trinkle LCP (steps 1–6 of
 // contact_step.hpp, cheapest first, each capped), with every LemkeSolver kept alive, so
 // that the one whose solution is the answer can differentiate it (LemkeSolver::backward).
 // solve_lcp_model (the simulator) and the hard loss (learn/step_loss_hard.hpp) both run
@@ -76,7 +76,7 @@ class StewartTrinkleLcpSource {
 /// one: for a caller whose previous LCP of this island ended perturbed or regularized after
 /// those had failed (a jammed pile at rest; contact_step.hpp kLcpExactRetrySteps).
 /// `warm_from_regularized`: `warm` is the basis of a regularized answer (M + εI) or of a
-/// failed step's carried entries: step 1c runs right after step 1b fails, instead of last.
+/// failed step's carried entries: step 1c runs first, before step 1b, instead of last.
 /// `lifted`: lcp.M's lifted form (stewart_trinkle_lifted_form), given to every attempt's
 /// LemkeSolver (the M + εI of step 4 with εI added to its H); nullptr: none.
 void run_lcp_model_attempts(const ContactSystem& s, const StewartTrinkleLcp& lcp, const LemkeSettings& settings,
