@@ -8,9 +8,11 @@
 // - at θ moved by 1e-4 relative, the evaluations starting from the stored bases take fewer
 //   pivots in all than cold ones, and give the loss of a cold evaluation to 1e-9 relative;
 // - with hard_warm_basis = false, every evaluation takes as many pivots as the first, and
-//   no contact has a stored basis (all counted in stats().cold_contacts).
+//   no contact has a stored basis (all counted in stats().cold_contacts);
+// - a regularized island's basis is stored marked and restarts on M + εI (last test).
 #include <lcprelax/learn/scene_objective.hpp>
 
+#include "dynamics_support.hpp"
 #include "learn_scene_pile_support.hpp"
 
 #include <gtest/gtest.h>
@@ -109,6 +111,48 @@ TEST(SceneHardWarmBasis, NearbyThetaStartsFromTheStoredBasesWithTheColdLoss) {
   EXPECT_GT(c.pivots, 0);
   const Pass cold_again = evaluate_all(cold, su.theta);
   EXPECT_EQ(cold_again.pivots, cold_first.pivots) << "without stored bases every pass starts cold";
+}
+
+// A transition whose island's answer is regularized (the wedged box of lcp_wedge_support.hpp,
+// with a q bias b = −1e-6 m/s whose LCP on M has no solution) stores its basis marked, and
+// the next evaluation starts from it on M + εI (step 1c), as the simulator would: fewer
+// pivots than the first (cold) evaluation and than an evaluation without the mark would
+// take (hard_step_loss from the unmarked basis), the same loss to 1e-7 relative.
+TEST(SceneHardWarmBasis, ARegularizedIslandRestartsOnMPlusEpsilonI) {
+  Scene scene;
+  scene.world.bodies.push_back(lcprelax::test::box(0.1, 0.1, 10.0, Vec3(0.0, 1.0, 0.0)));
+  scene.world.half_planes.push_back(HalfPlane{Vec2(1.0, 0.0), -0.0499, 0});
+  scene.world.half_planes.push_back(HalfPlane{Vec2(-1.0, 0.0), -0.0499, 0});
+  scene.world.friction.default_mu = 0.5;
+  scene.world.lcp_block.enabled = true;
+  scene.world.lcp_block.q = Vec4(-1e-6, 0.0, 0.0, 0.0);
+  scene.settings.dt = 1e-2;
+  scene.settings.model = ContactModel::lcp;
+  scene.settings.margin = 1e-2;
+  SceneDatasetSettings ds;
+  ds.steps = 2;
+  ds.push_fraction = 0.0;
+  ds.drop_without_contact = false;
+  const SceneDataset data = generate_scene_dataset(scene, ds);
+  ASSERT_GE(data.transitions.size(), 1u);
+  const SceneParameterMap map(data.scene.world, SceneParameterSettings{});
+  const ParameterSet theta = map.parameters(data.scene.world);
+  SceneObjective objective(data, map, hard_settings(true));
+  objective.prepare(theta, 1);
+  objective.reset_stats();
+  const SampleResult first = objective.evaluate(0, theta, 0);
+  ASSERT_TRUE(first.ok) << first.message;
+  const SceneObjectiveStats a = objective.stats();
+  ASSERT_EQ(a.inaccurate_islands, 1) << "the wedge's answer is regularized";
+  objective.reset_stats();
+  const SampleResult second = objective.evaluate(0, theta, 0);
+  ASSERT_TRUE(second.ok) << second.message;
+  const SceneObjectiveStats b = objective.stats();
+  std::printf("[ measured ] wedge pivots: cold %ld, from the marked basis %ld\n", a.solver_work, b.solver_work);
+  EXPECT_EQ(b.inaccurate_islands, 1);
+  EXPECT_EQ(b.cold_contacts, 0);
+  EXPECT_LT(b.solver_work, a.solver_work);
+  EXPECT_NEAR(second.loss, first.loss, 1e-7 * std::abs(first.loss));
 }
 
 }  // namespace

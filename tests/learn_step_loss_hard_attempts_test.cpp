@@ -6,7 +6,7 @@
 // Scene (tests/lcp_wedge_support.hpp): a 0.1 m box (10 kg) wedged 0.1 mm into
 // two walls, with a per-contact q bias b = −1e-6 m/s on the normal rows (world.hpp
 // ContactLcpBlock): the LCP has no solution, every path on M ends on a ray, and the
-// solution on M + εI is kept as solved_inaccurate.
+// solution on M + εI is kept as solved_inaccurate (StepLossResult::regularized).
 #include <lcprelax/learn/step_loss_hard.hpp>
 #include <lcprelax/models/contact_step.hpp>
 #include <lcprelax/models/contact_system.hpp>
@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace lcprelax {
 namespace {
@@ -45,6 +46,29 @@ TEST(HardLossAttempts, RegularizedStepMatchesTheSimulatorsModel) {
   EXPECT_EQ(r.v_next, model.v_next);  // the same attempts, the same arithmetic
   EXPECT_EQ(r.work, model.work);
   EXPECT_EQ(basis, model.z_basic);
+}
+
+// From the regularized answer's basis, marked as such (warm_from_regularized: the
+// simulator's ContactWarmRecord::regularized), the hard loss takes the simulator's path
+// (step 1c first): the same answer and pivots as solve_lcp_model given the same flag, fewer
+// pivots than the cold attempts, still regularized.
+TEST(HardLossAttempts, ARegularizedWarmBasisTakesTheSimulatorsPath) {
+  const ContactSystem s = wedged_box(-1e-6);
+  std::vector<bool> basis;
+  const learn::StepLossResult cold = learn::hard_step_loss(s, target_of(s), kDt, {}, {}, &basis);
+  ASSERT_TRUE(cold.regularized) << cold.message;
+  const ContactSolution model = solve_lcp_model(s, kDt, LemkeSettings{}, basis, nullptr, false, true);
+  ASSERT_EQ(model.status, ContactStatus::solved_inaccurate) << model.message;
+  std::vector<bool> final_basis;
+  const learn::StepLossResult r =
+      learn::hard_step_loss(s, target_of(s), kDt, {}, basis, &final_basis, false, /*warm_from_regularized=*/true);
+  EXPECT_TRUE(r.regularized) << r.message;
+  EXPECT_EQ(r.v_next, model.v_next);
+  EXPECT_EQ(r.work, model.work);
+  EXPECT_EQ(final_basis, model.z_basic);
+  EXPECT_LT(r.work, cold.work);
+  const learn::StepLossResult unmarked = learn::hard_step_loss(s, target_of(s), kDt, {}, basis);
+  EXPECT_GT(unmarked.work, r.work) << "without the mark: step 1b and the cold attempts first";
 }
 
 // ∂ℓ/∂b (the q bias of the normal rows) and ∂ℓ/∂v* against central differences. Neither

@@ -1,8 +1,9 @@
 // ContactWarmTable (models/contact_warm_table.hpp). Expected:
-// - after random writes of either field to 300 keys drawn from 120 (so most keys are written
-//   several times, fields in any order), every key's entry equals that of a std::map written
-//   with `map[key].field = code` in the same order (last write per field wins, a field never
-//   written is 0), and keys never written are not found;
+// - after random writes of any field (normal, friction, regularized) to 300 keys drawn from
+//   120 (so most keys are written several times, fields in any order), every key's entry
+//   equals that of a std::map written with `map[key].field = code` in the same order (last
+//   write per field wins, a field never written is 0 or false), keys never written are not
+//   found, and records() / assign() carry every field;
 // - an empty table finds nothing; clear() empties it;
 // - swap() exchanges two tables' contents;
 // - find_sorted() gives find()'s entry for every key, for keys in increasing order (the
@@ -23,6 +24,7 @@ namespace {
 
 struct Reference {
   double normal = 0.0, friction = 0.0;
+  bool regularized = false;
 };
 
 ContactKey key_of(int k) { return {k % 7, k / 7 - 1, k % 3, k % 5, k % 2}; }
@@ -34,12 +36,17 @@ TEST(ContactWarmTable, MatchesMapSemantics) {
   for (int w = 0; w < 300; ++w) {
     const ContactKey key = key_of(static_cast<int>(rng() % 120));
     const double code = static_cast<double>(rng() % 1000) / 7.0;
-    if (rng() % 2) {
+    const unsigned field = rng() % 3;
+    if (field == 0) {
       table.set_normal(key, code);
       reference[key].normal = code;
-    } else {
+    } else if (field == 1) {
       table.set_friction(key, code);
       reference[key].friction = code;
+    } else {
+      const bool flag = rng() % 2;
+      table.set_regularized(key, flag);
+      reference[key].regularized = flag;
     }
   }
   table.finish();
@@ -49,6 +56,21 @@ TEST(ContactWarmTable, MatchesMapSemantics) {
     ASSERT_NE(e, nullptr);
     EXPECT_EQ(e->normal, ref.normal);
     EXPECT_EQ(e->friction, ref.friction);
+    EXPECT_EQ(e->regularized, ref.regularized);
+  }
+  int flagged = 0;
+  for (const auto& [key, ref] : reference) flagged += ref.regularized;
+  ASSERT_GT(flagged, 0);
+  ASSERT_LT(flagged, static_cast<int>(reference.size()));
+  ContactWarmTable copy;
+  copy.assign(table.records());
+  ASSERT_EQ(copy.size(), table.size());
+  for (const auto& [key, ref] : reference) {
+    const ContactWarmTable::Entry* e = copy.find(key);
+    ASSERT_NE(e, nullptr);
+    EXPECT_EQ(e->normal, ref.normal);
+    EXPECT_EQ(e->friction, ref.friction);
+    EXPECT_EQ(e->regularized, ref.regularized);
   }
   for (int k = 0; k < 400; ++k) {
     if (!reference.count(key_of(k))) {

@@ -1,8 +1,9 @@
 // A scene file's "warm_start" list (scene_json.hpp, docs/formats.md). Expected:
-// - write_scene writes the scene's warm-start records as 7-integer arrays and parse_scene
-//   reads them back equal; a scene without records writes no "warm_start" key;
+// - write_scene writes the scene's warm-start records as 7-integer arrays, 8 for a
+//   regularized record (its 8th integer 1), and parse_scene reads them back equal (an 8th
+//   integer 0 is read as not regularized); a scene without records writes no "warm_start" key;
 // - make_simulator hands them to the simulator (Simulator::warm_start_state);
-// - entries that are not 7 integers in their ranges are InputErrors naming the entry, and
+// - entries that are not 7 or 8 integers in their ranges are InputErrors naming the entry, and
 //   write_scene refuses a code that is not an integer of its range.
 #include <lcprelax/core/errors.hpp>
 #include <lcprelax/scenes/scene_json.hpp>
@@ -34,19 +35,26 @@ void expect_input_error(const std::string& text, const std::string& part) {
 }
 
 TEST(SceneJsonWarmStart, WrittenAndReadBackEqual) {
-  Scene s = parse_scene(with_warm_start("[0, -1, 1, 0, 0, 1, 6], [0, -1, 1, 0, 1, 1, 2], [1, 0, 0, -1, 0, 0, 0]"));
+  Scene s = parse_scene(
+      with_warm_start("[0, -1, 1, 0, 0, 1, 6], [0, -1, 1, 0, 1, 1, 2, 1], [1, 0, 0, -1, 0, 0, 0, 0]"));
   ASSERT_EQ(s.warm_start.size(), 3u);
   EXPECT_EQ(s.warm_start[1].key, (ContactKey{0, -1, 1, 0, 1}));
   EXPECT_EQ(s.warm_start[1].normal, 1.0);
   EXPECT_EQ(s.warm_start[1].friction, 2.0);
+  EXPECT_FALSE(s.warm_start[0].regularized);
+  EXPECT_TRUE(s.warm_start[1].regularized);
+  EXPECT_FALSE(s.warm_start[2].regularized);
   const std::string text = write_scene(s);
   EXPECT_NE(text.find("\"warm_start\""), std::string::npos);
+  EXPECT_NE(text.find("[0, -1, 1, 0, 1, 1, 2, 1]"), std::string::npos) << "the regularized record's 8th integer: " << text;
+  EXPECT_NE(text.find("[1, 0, 0, -1, 0, 0, 0]"), std::string::npos) << "7 integers when not regularized: " << text;
   const Scene t = parse_scene(text);
   ASSERT_EQ(t.warm_start.size(), s.warm_start.size());
   for (std::size_t i = 0; i < s.warm_start.size(); ++i) {
     EXPECT_EQ(t.warm_start[i].key, s.warm_start[i].key);
     EXPECT_EQ(t.warm_start[i].normal, s.warm_start[i].normal);
     EXPECT_EQ(t.warm_start[i].friction, s.warm_start[i].friction);
+    EXPECT_EQ(t.warm_start[i].regularized, s.warm_start[i].regularized);
   }
   s.warm_start.clear();
   EXPECT_EQ(write_scene(s).find("warm_start"), std::string::npos);
@@ -63,7 +71,9 @@ TEST(SceneJsonWarmStart, TheSimulatorStartsFromThem) {
 }
 
 TEST(SceneJsonWarmStart, BadEntriesNameTheEntry) {
-  expect_input_error(with_warm_start("[0, -1, 1, 0, 0, 1]"), "warm_start[0]: expected 7 integers");
+  expect_input_error(with_warm_start("[0, -1, 1, 0, 0, 1]"), "warm_start[0]: expected 7 or 8 integers");
+  expect_input_error(with_warm_start("[0, -1, 1, 0, 0, 1, 0, 1, 0]"), "warm_start[0]: expected 7 or 8 integers");
+  expect_input_error(with_warm_start("[0, -1, 1, 0, 0, 1, 0, 2]"), "warm_start[0][7]: must be in [0, 1], got 2");
   expect_input_error(with_warm_start("[0, -1, 1, 0, 0, 1, 0], 3"), "warm_start[1]: expected an array");
   expect_input_error(with_warm_start("[2, -1, 1, 0, 0, 1, 0]"), "warm_start[0][0]: must be in [0, 1], got 2");
   expect_input_error(with_warm_start("[0, -2, 1, 0, 0, 1, 0]"), "warm_start[0][1]: must be in [-1, 1]");

@@ -15,6 +15,12 @@
 
 namespace lcprelax::learn {
 
+namespace {
+// Added to a stored basis's normal codes (lcp_basis_codes.hpp: 0 or 1) of an island whose
+// answer was regularized (StepLossResult::regularized).
+constexpr double kRegularizedCode = 2.0;
+}  // namespace
+
 struct SceneObjective::Workspace {
   World world;
   Vector theta;  // the θ `world` carries
@@ -195,17 +201,27 @@ SampleResult SceneObjective::evaluate(Index sample, const ParameterSet& theta, i
         detail::ProximalCenters& bases = centers_[static_cast<std::size_t>(sample)];
         const Index nc = s.num_contacts(), nf = s.num_friction();
         ws.warm_basis.clear();
+        // A stored normal code of 2 or 3 (kRegularizedCode + 0/1) marks a contact of an island
+        // whose answer was regularized: as the simulator's warm-start entries
+        // (ContactWarmRecord::regularized), the island then starts with step 1c.
+        bool warm_from_regularized = false;
         if (!bases.empty()) {
           ws.stats.cold_contacts += bases.lookup(found.contacts, s, ws.center);
+          for (Index c = 0; c < nc; ++c) {
+            if (ws.center(c) < kRegularizedCode) continue;
+            warm_from_regularized = true;
+            ws.center(c) -= kRegularizedCode;
+          }
           decode_lcp_basis(ws.center, nc, nf, ws.warm_basis);
         } else {
           ws.stats.cold_contacts += nc;
         }
         r = hard_step_loss(s, ws.target, dt, settings_.hard, ws.warm_basis, &ws.final_basis,
-                           skip_exact_cold && !ws.warm_basis.empty());
+                           skip_exact_cold && !ws.warm_basis.empty(), warm_from_regularized && !ws.warm_basis.empty());
         inaccurate = inaccurate || r.status == ContactStatus::solved_inaccurate;
         if (has_solution(r.status) && static_cast<Index>(ws.final_basis.size()) == nc + 3 * nf) {
           encode_lcp_basis(ws.final_basis, nc, nf, ws.center);
+          if (r.regularized) ws.center.head(nc).array() += kRegularizedCode;
           bases.record(found.contacts, s, ws.center);
         }
         break;

@@ -71,7 +71,7 @@ std::string HardStepLossSettings::validation_error() const {
 
 StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, double dt,
                               const HardStepLossSettings& settings, const std::vector<bool>& warm_basis,
-                              std::vector<bool>* final_basis, bool skip_exact_cold) {
+                              std::vector<bool>* final_basis, bool skip_exact_cold, bool warm_from_regularized) {
   if (const std::string e = settings.validation_error(); !e.empty()) throw InputError("HardStepLossSettings: " + e);
   validate_step_loss_input(s, target, dt);
   const Index nc = s.num_contacts(), nf = s.num_friction(), nd = s.num_dofs();
@@ -91,7 +91,8 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
   const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), dt);
   LcpModelAttempts attempts;
   const LcpLiftedForm lifted = stewart_trinkle_lifted_form(s, dt);
-  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts, skip_exact_cold, {}, false, &lifted);
+  run_lcp_model_attempts(s, lcp, settings.lemke, warm_basis, attempts, skip_exact_cold, {}, false, &lifted,
+                         warm_from_regularized);
   r.work = attempts.pivots;
   const LemkeSolver* sol = attempts.used;
   if (!has_solution(attempts.status)) {
@@ -102,6 +103,7 @@ StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, doub
     return r;
   }
   r.status = attempts.status;
+  r.regularized = attempts.source == LcpModelSource::regularized;
   if (attempts.source != LcpModelSource::exact) r.message = attempts.message;
   const LcpResult& res = sol->result();
   if (final_basis) *final_basis = res.z_basic;

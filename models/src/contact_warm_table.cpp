@@ -42,7 +42,12 @@ void ContactWarmTable::finish() {
       keys_.push_back(w.key);
       entries_.emplace_back();
     }
-    (w.normal ? entries_.back().normal : entries_.back().friction) = w.code;
+    Entry& e = entries_.back();
+    switch (w.field) {
+      case Field::normal: e.normal = w.code; break;
+      case Field::friction: e.friction = w.code; break;
+      case Field::regularized: e.regularized = w.code != 0.0; break;
+    }
   }
 }
 
@@ -68,7 +73,7 @@ void ContactWarmTable::find_sorted(const std::vector<ContactKey>& keys, std::vec
 
 std::vector<ContactWarmRecord> ContactWarmTable::records() const {
   std::vector<ContactWarmRecord> out(keys_.size());
-  for (std::size_t i = 0; i < keys_.size(); ++i) out[i] = {keys_[i], entries_[i].normal, entries_[i].friction};
+  for (std::size_t i = 0; i < keys_.size(); ++i) out[i] = {keys_[i], entries_[i].normal, entries_[i].friction, entries_[i].regularized};
   return out;
 }
 
@@ -77,6 +82,7 @@ void ContactWarmTable::assign(const std::vector<ContactWarmRecord>& records) {
   for (const ContactWarmRecord& r : records) {
     set_normal(r.key, r.normal);
     set_friction(r.key, r.friction);
+    if (r.regularized) set_regularized(r.key, true);
   }
   finish();
 }

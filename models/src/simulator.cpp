@@ -357,9 +357,15 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
           }
           decode_lcp_basis(code, nc, nf, warm);
         }
+        // Step 1c first when any contact's entry came from a regularized answer or a failed
+        // step (ContactWarmRecord::regularized): a part of the basis that is singular in M
+        // leaves the whole basis singular in M, whichever islands merged since.
+        bool warm_from_regularized = false;
+        for (Index c = 0; c < nc && settings_.warm_start && !warm_from_regularized; ++c)
+          if (const ContactWarmTable::Entry* e = previous_[static_cast<std::size_t>(s.contacts[c])])
+            warm_from_regularized = e->regularized;
         const LcpIslandMemory* memory = lcp_memory[i];
         const bool accept_perturbed = memory && !lcp_retry_exact(memory->perturbed_steps);
-        const bool warm_from_regularized = memory && memory->regularized_or_failed;
         wk.solution = solve_lcp_model(s, dt, settings_.lemke, warm, memory ? memory->factorization : nullptr,
                                       accept_perturbed, warm_from_regularized);
       } else if (settings_.convex_solver == ConvexSolver::active_set_newton) {
@@ -427,6 +433,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   const double none = std::numeric_limits<double>::quiet_NaN();
   warm_normal_.assign(contacts_.size(), none);
   warm_friction_.assign(contacts_.size(), none);
+  warm_regularized_.assign(contacts_.size(), 0);
   for (std::size_t i = 0; i < work.size(); ++i) {
     const ContactSystem& s = work[i].system;
     const ContactSolution& sol = work[i].solution;
@@ -452,8 +459,9 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
     if (lcp_memory[i]) {  // inexact or failed: the next step may take an inexact answer
       const bool failed = sol.status == ContactStatus::failed;
       lcp_memory[i]->perturbed_steps = sol.perturbed || sol.regularized || failed ? lcp_memory[i]->perturbed_steps + 1 : 0;
-      lcp_memory[i]->regularized_or_failed = sol.regularized || failed;
     }
+    const char regularized = lcp && (sol.regularized || sol.status == ContactStatus::failed);
+    for (Index c = 0; c < nc; ++c) warm_regularized_[static_cast<std::size_t>(s.contacts[c])] = regularized;
     // The LCP's final basis, or the convex active-set method's final active states.
     if (static_cast<Index>(sol.z_basic.size()) == nc + 3 * nf) {
       encode_lcp_basis(sol.z_basic, nc, nf, code);
@@ -476,6 +484,7 @@ StepStats Simulator::step(const std::vector<Vec3>& applied) {
   for (std::size_t c = 0; c < contacts_.size(); ++c) {
     if (!std::isnan(warm_normal_[c])) next_warm_.set_normal(keys[c], warm_normal_[c]);
     if (!std::isnan(warm_friction_[c])) next_warm_.set_friction(keys[c], warm_friction_[c]);
+    if (warm_regularized_[c] && !std::isnan(warm_normal_[c])) next_warm_.set_regularized(keys[c], true);
   }
   next_warm_.finish();
   warm_.swap(next_warm_);

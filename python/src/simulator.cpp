@@ -182,12 +182,12 @@ class PySimulator {
   }
 
   // The warm-start state as a list of (body a, body b, static kind, static index, ordinal,
-  // normal code, friction code): a scene file's "warm_start" entries.
+  // normal code, friction code, regularized 0/1): a scene file's "warm_start" entries.
   py::list warm_start_state() const {
     py::list out;
     for (const ContactWarmRecord& r : sim_->warm_start_state())
       out.append(py::make_tuple(r.key[0], r.key[1], r.key[2], r.key[3], r.key[4], static_cast<int>(r.normal),
-                                static_cast<int>(r.friction)));
+                                static_cast<int>(r.friction), static_cast<int>(r.regularized)));
     return out;
   }
 
@@ -314,8 +314,8 @@ void bind_simulator(py::module_& m) {
                              "static_index, point (n, 2) m, normal (n, 2) from b to a, gap (m), mu")
       .def_property_readonly("warm_start_state", &PySimulator::warm_start_state,
                              "what the next step warm-starts from: a list of (body_a, body_b, static_kind,\n"
-                             "static_index, ordinal, normal_code, friction_code) per contact of the last step,\n"
-                             "as a scene file's 'warm_start' entries (docs/formats.md); a scene's own entries\n"
+                             "static_index, ordinal, normal_code, friction_code, regularized) per contact of the\n"
+                             "last step, as a scene file's 'warm_start' entries (docs/formats.md); a scene's own entries\n"
                              "are loaded by Simulator()")
       .def_property_readonly("settings", &PySimulator::settings, "the settings in use as a dict")
       .def_property_readonly("name", &PySimulator::name, "the scene's name")

@@ -12,18 +12,21 @@ std::vector<ContactWarmRecord> read_warm_start(const Json& list, int bodies) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = element(key, i);
     const Json& e = array(list[i], path);
-    if (e.size() != 7)
-      fail(path, "expected 7 integers [body a, body b, static kind, static index, ordinal, normal, friction], got " +
-                     std::to_string(e.size()) + " entries");
+    if (e.size() != 7 && e.size() != 8)
+      fail(path,
+           "expected 7 or 8 integers [body a, body b, static kind, static index, ordinal, normal, friction"
+           "(, regularized)], got " +
+               std::to_string(e.size()) + " entries");
     // Bounds per position; a body index needs a body (body a at least one).
-    const long long lo[7] = {0, -1, 0, -1, 0, 0, 0};
-    const long long hi[7] = {bodies - 1LL, bodies - 1LL, 2, INT_MAX, INT_MAX, 1, 7};
-    long long v[7];
-    for (std::size_t k = 0; k < 7; ++k) v[k] = integer(e[k], element(path, k), lo[k], hi[k]);
+    const long long lo[8] = {0, -1, 0, -1, 0, 0, 0, 0};
+    const long long hi[8] = {bodies - 1LL, bodies - 1LL, 2, INT_MAX, INT_MAX, 1, 7, 1};
+    long long v[8] = {};
+    for (std::size_t k = 0; k < e.size(); ++k) v[k] = integer(e[k], element(path, k), lo[k], hi[k]);
     ContactWarmRecord& r = out[i];
     for (std::size_t k = 0; k < 5; ++k) r.key[k] = static_cast<int>(v[k]);
     r.normal = static_cast<double>(v[5]);
     r.friction = static_cast<double>(v[6]);
+    r.regularized = v[7] != 0;
   }
   return out;
 }
@@ -37,6 +40,7 @@ Json warm_start_json(const std::vector<ContactWarmRecord>& records, int bodies) 
     for (int k : r.key) e.push_back(k);
     e.push_back(static_cast<int>(r.normal));
     e.push_back(static_cast<int>(r.friction));
+    if (r.regularized) e.push_back(1);  // 7 integers otherwise (files without the flag)
     list.push_back(std::move(e));
   }
   return list;

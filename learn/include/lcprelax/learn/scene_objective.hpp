@@ -41,7 +41,10 @@
 // models/contact_step.hpp; the perturbed answer is kept, still solved_inaccurate), except on
 // every kExactRetryEvery-th such evaluation in a row, which tries it again in case θ has
 // moved the LCP to one that it solves. On a 300-body pile this cut an evaluation from
-// 11,650 to 655 pivots (bench/results/learn_scene_hard_stored_bases.txt).
+// 11,650 to 655 pivots (bench/results/learn_scene_hard_stored_bases.txt). The basis of an
+// island whose answer was regularized (solved on M + εI) is stored marked, and the next
+// evaluation starts from it on M + εI (step 1c), as the simulator does with its marked
+// warm-start entries.
 // Contacts are found at the CURRENT θ (a learned vertex or ground moves them), then held
 // fixed while differentiating (a contact appearing or disappearing is a kink).
 #include <lcprelax/learn/scene_dataset.hpp>

@@ -35,6 +35,9 @@ struct StepLossResult {
   Vector v_next;                 ///< the method's prediction v⁺ (3 per island body)
   ContactSystemCotangent grad;   ///< ∂ℓ/∂data
   long work = 0;                 ///< pivots or interior-point iterations
+  /// Hard loss: the answer solved M + εI, not (M, q) (LcpModelSource::regularized; status
+  /// solved_inaccurate); its final basis then warm-starts with warm_from_regularized.
+  bool regularized = false;
 };
 
 /// The prediction of a step loss of least-squares form, ℓ = ‖v⁺ − v̄‖² (hard, convex), with

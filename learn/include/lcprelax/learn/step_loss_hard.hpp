@@ -51,10 +51,13 @@ struct HardStepLossSettings {
 /// or non-finite values), observed next velocity `target` (3 per island body), time step
 /// dt (s, > 0). `warm_basis` (size nc + 3nf, else ignored) is tried first; the final basis
 /// is written to `final_basis` when it is not null (warm start of the next evaluation).
-/// `skip_exact_cold`: run_lcp_model_attempts' option (models/lcp_model_attempts.hpp).
+/// `skip_exact_cold` and `warm_from_regularized` (the warm basis is that of an answer whose
+/// `regularized` was set: step 1c first): run_lcp_model_attempts' options
+/// (models/lcp_model_attempts.hpp), as the simulator passes them.
 StepLossResult hard_step_loss(const ContactSystem& s, const Vector& target, double dt,
                               const HardStepLossSettings& settings = {}, const std::vector<bool>& warm_basis = {},
-                              std::vector<bool>* final_basis = nullptr, bool skip_exact_cold = false);
+                              std::vector<bool>* final_basis = nullptr, bool skip_exact_cold = false,
+                              bool warm_from_regularized = false);
 
 /// Throws InputError naming the field unless `s`, `target` (3 per body) and dt (> 0) are
 /// consistent and finite (shared by the step losses).

@@ -35,8 +35,9 @@
 //      path would end at the same basis and fail the same polish; on a 500-body pile this
 //      halved the pivots per step, bench/README.md);
 //   1c. when the warm basis is that of a regularized answer (step 4 below) or of a failed
-//      step (solve_lcp_model's warm_from_regularized; the simulator remembers it per
-//      island), before step 1b (which then runs only if 1c found nothing): step 1b's crash path, with its ray restarts, on
+//      step (solve_lcp_model's warm_from_regularized; the simulator marks such contacts'
+//      warm-start entries, ContactWarmRecord::regularized), before step 1b (which then runs
+//      only if 1c found nothing): step 1b's crash path, with its ray restarts, on
 //      M + εI (step 4's regularization) from the warm basis, then step 4's polish on (M, q);
 //      failing that, its solution is kept as the regularized fallback (step 4's residual
 //      bound), and step 2 is skipped (as after 1b's perturbed answer); it is taken when

@@ -24,6 +24,10 @@ namespace lcprelax {
 struct ContactWarmRecord {
   ContactKey key{};
   double normal = 0.0, friction = 0.0;  ///< lcp_basis_codes.hpp: normal 0/1, friction 0..7
+  /// LCP model: the basis is that of a regularized answer (a basis of M + εI, often singular
+  /// in M) or the one a failed step started from; an island with such an entry runs the
+  /// lcp model's step 1c first (contact_step.hpp, solve_lcp_model's warm_from_regularized).
+  bool regularized = false;
 };
 
 /// Why `r` cannot be a contact's entry in a world of `bodies` bodies ("" when it can): body a
@@ -35,13 +39,19 @@ class ContactWarmTable {
  public:
   struct Entry {
     double normal = 0.0, friction = 0.0;
+    bool regularized = false;  ///< ContactWarmRecord::regularized
   };
 
   /// Empties the table for refilling (capacity kept).
   void clear();
   /// Records a write of one field of `key`'s entry; find() needs finish() first.
-  void set_normal(const ContactKey& key, double code) { writes_.push_back({key, writes_.size(), code, true}); }
-  void set_friction(const ContactKey& key, double code) { writes_.push_back({key, writes_.size(), code, false}); }
+  void set_normal(const ContactKey& key, double code) { writes_.push_back({key, writes_.size(), code, Field::normal}); }
+  void set_friction(const ContactKey& key, double code) {
+    writes_.push_back({key, writes_.size(), code, Field::friction});
+  }
+  void set_regularized(const ContactKey& key, bool regularized) {
+    writes_.push_back({key, writes_.size(), regularized ? 1.0 : 0.0, Field::regularized});
+  }
   /// Merges the writes into one entry per key, sorted by key (no allocation beyond the
   /// capacity that the writes already needed).
   void finish();
@@ -65,11 +75,12 @@ class ContactWarmTable {
   }
 
  private:
+  enum class Field : unsigned char { normal, friction, regularized };
   struct Write {
     ContactKey key;
     std::size_t order;  // position among the writes: later writes win
-    double code;
-    bool normal;  // which field
+    double code;        // regularized: 1 or 0
+    Field field;
   };
   std::vector<Write> writes_;
   std::vector<ContactKey> keys_;  // sorted, distinct

@@ -199,6 +199,8 @@ class Simulator {
   /// lcp_basis_codes.hpp: what the next step warm-starts from. Empty before the first step.
   /// A contact of a failed island (StepStats::failed_islands) keeps the entry that its
   /// step started from, if it had one: the next step starts from the last basis that solved.
+  /// The lcp model marks the entries of a regularized or failed island `regularized`: a
+  /// basis of M + εI (or the last that solved), from which the next step tries M + εI first.
   std::vector<ContactWarmRecord> warm_start_state() const { return warm_.records(); }
   /// Replaces that state, e.g. by one saved with a scene file (scene_json.hpp
   /// "warm_start"): the next step starts from it as from the step that produced it. Throws
@@ -231,6 +233,7 @@ class Simulator {
   /// table the step fills for the next one (swapped with it: both keep their capacity).
   ContactWarmTable warm_, next_warm_;
   std::vector<double> warm_normal_, warm_friction_;  // step(): the step's codes per contact (NaN: none)
+  std::vector<char> warm_regularized_;  // step(): per contact, ContactWarmRecord::regularized
   std::vector<const ContactWarmTable::Entry*> previous_;  // step(): warm_'s entry per contact (find_sorted)
   /// Convex model: each island's phase solvers, keyed by the island's smallest body index
   /// (an island keeps it while its bodies stay together); dropped when no island has it.
@@ -238,12 +241,12 @@ class Simulator {
   /// LCP model, per island (matched by its smallest body like convex_caches_): the
   /// factorization of its warm basis (LemkeSharedFactorization), and how many consecutive
   /// steps ended on a perturbed or regularized answer or failed (contact_step.hpp
-  /// kLcpExactRetrySteps), and whether the last one was regularized or failed (its warm
-  /// basis then runs step 1c early: solve_lcp_model's warm_from_regularized).
+  /// kLcpExactRetrySteps). Whether its basis came from a regularized answer or a failed step
+  /// is in the warm-start entries (ContactWarmRecord::regularized), so that a scene file
+  /// carries it.
   struct LcpIslandMemory {
     std::shared_ptr<LemkeSharedFactorization> factorization = make_lemke_shared_factorization();
     int perturbed_steps = 0;
-    bool regularized_or_failed = false;
   };
   std::map<int, LcpIslandMemory> lcp_islands_;
 };
