@@ -222,12 +222,16 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   //     (a 1,000-body pile: 61,101 pivots to its cap, a refactorization every 3, 240 s),
   //     while on M + εI, the LCP it solved, it is a short path from this step's solution.
   //     Else last, when every other attempt failed.
+  //     With accept_perturbed (an island whose last answers were inexact, between the steps
+  //     where lcp_retry_exact runs every attempt) the polish is skipped, as step 1b's is: on
+  //     a settled 1,000-body pile it failed on every such step ("crash basis is singular")
+  //     and took two thirds of a resting step's solve time (48 of 74 ms).
   bool warm_regularized_tried = false;
   auto warm_regularized = [&] {
     warm_regularized_tried = true;
     const LemkeSolver* rr = warm_crash_path(&regularized(), lifted ? &lifted_e : nullptr, q);
     if (!solved(rr)) return;
-    if (const LemkeSolver* polished = polished_on_q(*rr, -1)) r = polished;
+    if (const LemkeSolver* polished = accept_perturbed ? nullptr : polished_on_q(*rr, -1)) r = polished;
     else if (regularized_answer(*rr)) regularized_fallback = rr;
   };
   if (has_warm && warm_from_regularized && !solved(r)) warm_regularized();
