@@ -38,10 +38,12 @@
 //      step (solve_lcp_model's warm_from_regularized; the simulator marks such contacts'
 //      warm-start entries, ContactWarmRecord::regularized), before step 1b (which then runs
 //      only if 1c found nothing): step 1b's crash path, with its ray restarts, on
-//      M + εI (step 4's regularization) from the warm basis, then step 4's polish on (M, q);
-//      failing that, its solution is kept as the regularized fallback (step 4's residual
-//      bound), and step 2 is skipped (as after 1b's perturbed answer); it is taken when
-//      step 3 fails, or at once with accept_perturbed. A settled
+//      M + εI (step 4's regularization) from the warm basis, then step 4's polish on (M, q)
+//      (skipped with accept_perturbed, as 1b's is: on a settled 1,000-body pile it failed on
+//      every resting step and took two thirds of its solve time); failing that, its
+//      solution is kept as the regularized fallback (step 4's residual bound), and step 2
+//      is skipped (as after 1b's perturbed answer); it is taken when step 3 fails, or at
+//      once with accept_perturbed. A settled
 //      pile loads more contacts than its bodies have degrees of freedom: a regularized
 //      answer's basis is then singular in M, step 1b cannot start from it, and the cold
 //      paths on 12,000–16,000 unknowns run to their caps, while on M + εI the same basis
