@@ -19,6 +19,8 @@
 //   with the caller's max_pivots = 1 every cold attempt stops at once (1b and 1c are capped
 //   by kLcpWarmCrashPivotsPerUnknown alone), and the answer is 1c's regularized one; without
 //   a warm basis the same settings fail;
+// - between exact retries (accept_perturbed) only step 1c's first path runs, in the caller's
+//   shared factorization (its symbolic analysis reused on the next call);
 // - the same z as the cold attempts' regularized answer (M + εI's solution), to 1e-7
 //   relative: z grows like |b|/ε, and M + εI's condition like 1/ε (ε = 1e-8 relative).
 #include <lcprelax/models/contact_step.hpp>
@@ -68,6 +70,42 @@ TEST(LcpWarmRegularized, ARegularizedBasisRestartsOnMPlusEpsilonI) {
   run_lcp_model_attempts(s, lcp, LemkeSettings{}, warm, plain);
   ASSERT_EQ(plain.source, LcpModelSource::regularized) << plain.message;
   EXPECT_FALSE(plain.used->result().info.warm_started || plain.used->result().info.crash_started);
+}
+
+// A regularized island between its exact retries (warm_from_regularized and
+// accept_perturbed): step 1 and step 1c's polish are skipped, so the answer is 1c's first
+// attempt, started from the warm basis in the caller's warm_factorization; a second call
+// with the same basis reuses that factorization's symbolic analysis.
+TEST(LcpWarmRegularized, AtRestOnlyStepOneCRunsInTheSharedFactorization) {
+  const ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
+  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
+  LcpModelAttempts cold;
+  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
+  ASSERT_EQ(cold.source, LcpModelSource::regularized) << cold.message;
+  const std::vector<bool> warm = cold.used->result().z_basic;
+  const Vector z_cold = cold.used->result().z;
+  const std::shared_ptr<LemkeSharedFactorization> lu = make_lemke_shared_factorization();
+  LemkeSettings sparse;  // the shared factorization is the sparse method's (automatic: dense at n = 8)
+  sparse.method = LemkeMethod::sparse;
+  for (int call = 0; call < 2; ++call) {
+    SCOPED_TRACE(call);
+    LcpModelAttempts rest;
+    run_lcp_model_attempts(s, lcp, sparse, warm, rest, false, lu, /*accept_perturbed=*/true, nullptr,
+                           /*warm_from_regularized=*/true);
+    ASSERT_EQ(rest.source, LcpModelSource::regularized) << rest.message;
+    EXPECT_EQ(rest.solvers.size(), 1u) << "step 1c's path alone";
+    EXPECT_EQ(rest.used, &rest.solvers.front());
+    EXPECT_TRUE(rest.used->result().info.warm_started || rest.used->result().info.crash_started);
+    EXPECT_LE((rest.used->result().z - z_cold).lpNorm<Eigen::Infinity>(), 1e-7 * z_cold.lpNorm<Eigen::Infinity>());
+    EXPECT_EQ(lu->factorizations, call + 1) << "1c's basis is factorized in the shared factorization";
+    EXPECT_EQ(lu->analyses, 1) << "its pattern repeats: one symbolic analysis";
+  }
+  // Not skipped on a retry step (accept_perturbed false): step 1 runs first, in the shared
+  // factorization.
+  LcpModelAttempts retry;
+  run_lcp_model_attempts(s, lcp, sparse, warm, retry, false, lu, false, nullptr, true);
+  EXPECT_GT(retry.solvers.size(), 1u);
+  EXPECT_EQ(retry.solvers.front().result().info.crash_started, false) << "step 1: the warm basis alone";
 }
 
 TEST(LcpWarmRegularized, StepSixTurnsAFailureIntoTheRegularizedAnswer) {

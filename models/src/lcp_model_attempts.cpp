@@ -148,8 +148,15 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
     if (const LemkeSolver* polished = polished_on_q(rp, seed)) r = polished;
     else inexact = &rp;
   };
+  // A regularized island between its exact retries (warm_from_regularized with
+  // accept_perturbed): step 1 is skipped, as its basis is one of M + εI (on a settled
+  // 1,000-body pile step 1 never solved from it), and step 1c starts in warm_factorization
+  // instead, so that its symbolic analysis is reused while the basis pattern repeats.
+  const bool regularized_rest = has_warm && warm_from_regularized && accept_perturbed;
   // 1. The warm basis on q where it is feasible (on the lifted form alone while M is not formed).
-  if (has_warm && lifted && !lcp.formed())
+  if (regularized_rest)
+    ;
+  else if (has_warm && lifted && !lcp.formed())
     r = &attempt_on(nullptr, lifted, warm_only, q, &warm, warm_factorization);
   else if (has_warm)
     r = &attempt(warm_only, q, &warm, warm_factorization);
@@ -169,13 +176,14 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   warm_crash.max_pivots = 1 + static_cast<long>(kLcpWarmCrashPivotsPerUnknown * static_cast<double>(n));
   const long ray_pivots = static_cast<long>(kLcpWarmRayPivotsPerUnknown * static_cast<double>(n));
   std::vector<Index> trace;
-  auto warm_crash_path = [&](const SparseMatrix* M, const LcpLiftedForm* form, const Vector& rhs) {
+  auto warm_crash_path = [&](const SparseMatrix* M, const LcpLiftedForm* form, const Vector& rhs,
+                             const std::shared_ptr<LemkeSharedFactorization>& lu = nullptr) {
     if (!M) M = &lcp.lcp().M;
     trace.clear();
     trace.reserve(static_cast<std::size_t>(2 * ray_pivots + 2));
     std::vector<bool> start = warm;
     std::vector<signed char> level;
-    const LemkeSolver* rc = &attempt_on(M, form, warm_crash, rhs, &start, nullptr, &trace, ray_pivots);
+    const LemkeSolver* rc = &attempt_on(M, form, warm_crash, rhs, &start, lu, &trace, ray_pivots);
     long rayed = 0;  // pivots of the paths that ended on an early ray
     for (int k = 0;; ++k) {
       const LcpInfo& info = rc->result().info;
@@ -229,7 +237,8 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   bool warm_regularized_tried = false;
   auto warm_regularized = [&] {
     warm_regularized_tried = true;
-    const LemkeSolver* rr = warm_crash_path(&regularized(), lifted ? &lifted_e : nullptr, q);
+    const LemkeSolver* rr = warm_crash_path(&regularized(), lifted ? &lifted_e : nullptr, q,
+                                            regularized_rest ? warm_factorization : nullptr);
     if (!solved(rr)) return;
     if (const LemkeSolver* polished = accept_perturbed ? nullptr : polished_on_q(*rr, -1)) r = polished;
     else if (regularized_answer(*rr)) regularized_fallback = rr;

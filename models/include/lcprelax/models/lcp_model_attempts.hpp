@@ -69,7 +69,8 @@ class StewartTrinkleLcpSource {
 /// caller that knows step 3 failed on this LCP, or one a little different, before: the hard
 /// loss re-solving a transition whose stored basis came from a perturbed answer, where step
 /// 3 was 94% of the pivots (300-body pile, bench/results/learn_scene_hard_stored_bases.txt).
-/// `warm_factorization`: step 1's solver factorizes the warm basis in it (solve_lcp_model).
+/// `warm_factorization`: step 1's solver factorizes the warm basis in it (solve_lcp_model),
+/// or, with warm_from_regularized and accept_perturbed (step 1 then skipped), step 1c's first.
 /// `accept_perturbed`: when step 1b solves q + δu, that answer is taken without its polish
 /// on q and without steps 2–5 (source perturbed, solved_inaccurate), and step 3 is skipped
 /// as with skip_exact_cold when step 2 gave a perturbed answer or step 1c a regularized
