@@ -112,6 +112,10 @@ class LemkeBasis {
   /// solved form is a (a(r) ≠ 0). Returns false when a refactorization is due or the
   /// update is numerically unsafe; the caller then calls refactor().
   virtual bool replace(Index r, const Vector& a) = 0;
+  /// True after a replace() that returned true for an update whose accuracy is in doubt
+  /// (the sparse basis: its Schur complement's condition estimate beyond 1e12): the caller
+  /// measures the residual of the updated basic values and refactorizes when it is too large.
+  virtual bool update_needs_check() const { return false; }
   /// Bytes held by the factorization (for reports).
   virtual long memory_bytes() const = 0;
 };

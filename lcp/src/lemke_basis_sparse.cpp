@@ -2,7 +2,11 @@
 // replaced since (formulas in lemke_basis.hpp). An update is refused, forcing a fresh
 // factorization of the current basis, when |P| reaches min(refactor_interval,
 // kMaxSchurUpdates) or the Schur complement's reciprocal condition estimate falls below
-// 1e-12. B₀ = I (the all-w basis Lemke starts from) is represented without KLU. Rows of
+// kSchurRcondFloor = 1e-15; between that and kSchurRcondCheck = 1e-12 the update is kept
+// but flagged (update_needs_check), and the pivot loop refactorizes only if the updated
+// basic values' residual is above its bound (lemke_pivot.cpp): refactorization on measured
+// error rather than on the estimate alone (on bases of M + εI of a settled 1,000-body pile
+// the estimate fell below 1e-12 every 10-13 pivots). B₀ = I (the all-w basis Lemke starts from) is represented without KLU. Rows of
 // B⁻¹ for the lexicographic tie-breaks come from hypersparse transposed solves with B₀'s
 // factors (sparse/hypersparse_solve.hpp), copied row-wise from KLU at the first tie after
 // a factorization (a dense transposed solve if they cannot be extracted), and each
@@ -44,6 +48,8 @@ namespace lcprelax::detail {
 namespace {
 
 constexpr int kCap = kMaxSchurUpdates;
+constexpr double kSchurRcondCheck = 1e-12;  // below: the update's accuracy is measured
+constexpr double kSchurRcondFloor = 1e-15;  // below: refused (κ(S) near 1/ε_machine)
 constexpr Index kChunk = 8;  // right-hand sides per Schur block solve in inverse_rows
 using SchurMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kCap, kCap>;
 using SchurVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kCap, 1>;
@@ -292,8 +298,12 @@ class SparseLemkeBasis final : public LemkeBasis {
     if (!slot_reused)
       for (Index b = 0; b < j; ++b) S_(j, b) = W_(r, b);
     s_lu_.compute(S_.topLeftCorner(k, k));
-    return s_lu_.rcond() > 1e-12;
+    const double rcond = s_lu_.rcond();
+    needs_check_ = rcond <= kSchurRcondCheck;
+    return rcond > kSchurRcondFloor;
   }
+
+  bool update_needs_check() const override { return needs_check_; }
 
   long memory_bytes() const override {
     const long factor = identity_ ? 0 : klu_.factor_nnz();
@@ -382,6 +392,7 @@ class SparseLemkeBasis final : public LemkeBasis {
   static constexpr double kDenseColumn = 0.3;
   Eigen::Matrix<double, kCap, kCap> S_;  // S = E_Pᵀ W in its top-left |P|×|P| corner
   Eigen::PartialPivLU<SchurMatrix> s_lu_;
+  bool needs_check_ = false;  // the last replace()'s S had rcond ≤ kSchurRcondCheck
   SparseMatrix B0_;         // B₀ (CSC), input of KLU
   Vector pending_;          // B₀⁻¹ c of the last solve_column
   Vector aug_;              // lifted: a solve's (n + m) right-hand side and solution

@@ -101,6 +101,10 @@ struct LemkeSolver::Impl {
   bool drop_vanished_z0(Index entering);
   // |z₀|·‖d‖∞ (normalized units, ‖q‖∞ = 1) below which a ray tries drop_vanished_z0.
   static constexpr double kVanishedZ0 = 1e-6;
+  // Residual bound of x_B after an ill-conditioned basis update (LcpInfo::update_checks),
+  // relative to max(1, ‖M‖∞)·max(1, ‖x_B‖∞), normalized units: 10× below the final
+  // solution's default residual tolerance (1e-9·‖q‖∞).
+  static constexpr double kUpdateResidual = 1e-10;
   Index lexicographic_row(const Vector& den, const Vector& x, bool prefer_z0);
 
   // lemke_crash.cpp

@@ -110,7 +110,7 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
   for (long pivot = 0;; ++pivot) {
     if (r < 0) return finish(LcpStatus::numerical_error, "non-finite ratio in the minimum-ratio test (basis lost accuracy)");
     // Pivot on (r, entering): update the factorization and x_B.
-    const bool updated = basis->replace(r, a);
+    bool updated = basis->replace(r, a);
     factor_current = false;
     // x_B(r) ← x_B(r)/a_r, x_B(i) ← x_B(i) − a_i·x_B(r) elsewhere: one vectorized pass
     // over all rows (a_i = 0 leaves x_B(i) unchanged, bit for bit, as x_B(r) is finite).
@@ -123,6 +123,17 @@ void LemkeSolver::Impl::pivot_from_current_basis(bool covered_rows_only) {
     result.info.pivots = pivot + 1;
     if (leaving == z0()) return extract_solution();
     if (result.info.pivots >= max_pivots) return finish(LcpStatus::pivot_limit, "pivot limit reached");
+    if (updated && basis->update_needs_check()) {
+      // An ill-conditioned update (lemke_basis.hpp): kept while the updated x_B still
+      // solves B x_B = q to kUpdateResidual; a refactorization is due only past that.
+      ++result.info.update_checks;
+      residual_of_basic(xB, refine);
+      const double scale = std::max(1.0, mnorm) * std::max(1.0, xB.lpNorm<Eigen::Infinity>());
+      if (!(refine.lpNorm<Eigen::Infinity>() <= kUpdateResidual * scale)) {
+        ++result.info.update_refactorizations;
+        updated = false;
+      }
+    }
     if (!updated && !refactor(xB)) return finish(LcpStatus::numerical_error, "basis became singular");
     entering = complement(leaving, n);
     if (!entering_candidates(entering) && !factor_current) {

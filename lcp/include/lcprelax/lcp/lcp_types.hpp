@@ -178,6 +178,12 @@ struct LcpInfo {
   LemkeMethod method = LemkeMethod::automatic;  ///< dense or sparse: the one used
   long refactorizations = 0;  ///< basis factorizations from scratch
   long ray_rechecks = 0;  ///< rays found with an updated factorization, rechecked after a fresh one
+  /// Pivots whose basis update was ill-conditioned (sparse method: Schur complement's rcond
+  /// estimate in (1e-15, 1e-12]) and whose updated basic values were checked by their
+  /// residual instead of refactorizing at once; of these, `update_refactorizations` failed
+  /// the check (residual above 1e-10·max(1, ‖M‖∞)·max(1, ‖x_B‖∞), normalized units).
+  long update_checks = 0;
+  long update_refactorizations = 0;
   /// Steps of the purification of a warm-start point (LemkeSolver::warm_start_point,
   /// lemke_purify.cpp): superbasic z_j driven to 0 or into the basis; not counted in pivots.
   long purification_steps = 0;

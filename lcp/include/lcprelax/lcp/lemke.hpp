@@ -12,8 +12,11 @@
 //   refactorized every refactor_interval pivots and at the end): for small n;
 // - sparse: KLU LU of the basis at the last refactorization plus a Schur-complement block
 //   update of the columns replaced since (Eldersveld & Saunders 1992), refactorized every
-//   refactor_interval replacements: memory O(nnz(LU) + n·refactor_interval), no dense n×n
-//   array. Rows of B⁻¹ for the tie-breaks are formed only for rows still tied after the
+//   refactor_interval replacements, and earlier when an update is ill-conditioned (the
+//   Schur complement's condition estimate beyond 1e12) and the updated basic values' residual
+//   ‖q − B x_B‖∞ exceeds 1e-10·max(1, ‖M‖∞)·max(1, ‖x_B‖∞) (normalized units), or beyond
+//   1e15 at once (LcpInfo::update_checks): memory O(nnz(LU) + n·refactor_interval), no
+//   dense n×n array. Rows of B⁻¹ for the tie-breaks are formed only for rows still tied after the
 //   ratio test, with their nonzeros only (hypersparse transposed solves with B₀'s factors;
 //   LemkeSettings::sparse_tie_rows, lcp/src/lemke_lexicographic.hpp).
 // `automatic` uses dense for n ≤ dense_max_n (measured crossover, bench/README.md). Both
