@@ -6,8 +6,9 @@
 // but flagged (update_needs_check), and the pivot loop refactorizes only if the updated
 // basic values' residual is above its bound (lemke_pivot.cpp): refactorization on measured
 // error rather than on the estimate alone (on bases of M + εI of a settled 1,000-body pile
-// the estimate fell below 1e-12 every 10-13 pivots). B₀ = I (the all-w basis Lemke starts from) is represented without KLU. Rows of
-// B⁻¹ for the lexicographic tie-breaks come from hypersparse transposed solves with B₀'s
+// the estimate fell below 1e-12 every 10-13 pivots). B₀ = I (the all-w basis Lemke starts
+// from) is represented without KLU. Rows of B⁻¹ for the lexicographic tie-breaks come
+// from hypersparse transposed solves with B₀'s
 // factors (sparse/hypersparse_solve.hpp), copied row-wise from KLU at the first tie after
 // a factorization (a dense transposed solve if they cannot be extracted), and each
 // entering column's B₀⁻¹c from a hypersparse solve with the same factors, or from a dense

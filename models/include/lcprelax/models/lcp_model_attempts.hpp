@@ -74,8 +74,9 @@ class StewartTrinkleLcpSource {
 /// `accept_perturbed`: when step 1b solves q + δu, that answer is taken without its polish
 /// on q and without steps 2–5 (source perturbed, solved_inaccurate), and step 3 is skipped
 /// as with skip_exact_cold when step 2 gave a perturbed answer or step 1c a regularized
-/// one (whose polish on (M, q) is then skipped as well): for a caller whose previous LCP of this island ended perturbed or regularized after
-/// those had failed (a jammed pile at rest; contact_step.hpp kLcpExactRetrySteps).
+/// one (whose polish on (M, q) is then skipped as well): for a caller whose previous LCP
+/// of this island ended perturbed or regularized after those had failed (a jammed pile at
+/// rest; contact_step.hpp kLcpExactRetrySteps).
 /// `warm_from_regularized`: `warm` is the basis of a regularized answer (M + εI) or of a
 /// failed step's carried entries: step 1c runs first, before step 1b, instead of last.
 /// `lifted`: lcp.M's lifted form (stewart_trinkle_lifted_form), given to every attempt's
