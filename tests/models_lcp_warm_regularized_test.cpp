@@ -38,16 +38,28 @@ namespace {
 
 constexpr double kDt = 1e-2;
 
-TEST(LcpWarmRegularized, ARegularizedBasisRestartsOnMPlusEpsilonI) {
-  const ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
-  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
-  const double qn = lcp.q.lpNorm<Eigen::Infinity>();
+// The wedged box's LCP and its cold attempts' regularized answer (the warm basis of the tests).
+struct RegularizedWedge {
+  ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
+  StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
   LcpModelAttempts cold;
-  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
-  ASSERT_EQ(cold.source, LcpModelSource::regularized) << cold.message;
+  std::vector<bool> warm;
+  Vector z_cold;
+  RegularizedWedge() {
+    run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
+    if (cold.source != LcpModelSource::regularized || !cold.used) return;
+    warm = cold.used->result().z_basic;
+    z_cold = cold.used->result().z;
+  }
+  bool regularized() const { return cold.source == LcpModelSource::regularized && cold.used; }
+};
+
+TEST(LcpWarmRegularized, ARegularizedBasisRestartsOnMPlusEpsilonI) {
+  const RegularizedWedge wedge;
+  ASSERT_TRUE(wedge.regularized()) << wedge.cold.message;
+  const auto& [s, lcp, cold, warm, z_cold] = wedge;
+  const double qn = lcp.q.lpNorm<Eigen::Infinity>();
   ASSERT_FALSE(cold.used->result().info.crash_started) << "step 4 is a cold path";
-  const std::vector<bool> warm = cold.used->result().z_basic;
-  const Vector z_cold = cold.used->result().z;
 
   std::size_t attempts_without = 0;
   for (const bool accept : {false, true}) {
@@ -77,13 +89,9 @@ TEST(LcpWarmRegularized, ARegularizedBasisRestartsOnMPlusEpsilonI) {
 // attempt, started from the warm basis in the caller's warm_factorization; a second call
 // with the same basis reuses that factorization's symbolic analysis.
 TEST(LcpWarmRegularized, AtRestOnlyStepOneCRunsInTheSharedFactorization) {
-  const ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
-  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
-  LcpModelAttempts cold;
-  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
-  ASSERT_EQ(cold.source, LcpModelSource::regularized) << cold.message;
-  const std::vector<bool> warm = cold.used->result().z_basic;
-  const Vector z_cold = cold.used->result().z;
+  const RegularizedWedge wedge;
+  ASSERT_TRUE(wedge.regularized()) << wedge.cold.message;
+  const auto& [s, lcp, cold, warm, z_cold] = wedge;
   const std::shared_ptr<LemkeSharedFactorization> lu = make_lemke_shared_factorization();
   LemkeSettings sparse;  // the shared factorization is the sparse method's (automatic: dense at n = 8)
   sparse.method = LemkeMethod::sparse;
@@ -109,12 +117,9 @@ TEST(LcpWarmRegularized, AtRestOnlyStepOneCRunsInTheSharedFactorization) {
 }
 
 TEST(LcpWarmRegularized, StepSixTurnsAFailureIntoTheRegularizedAnswer) {
-  const ContactSystem s = test::wedged_box_system(-1e-6, 0.5, kDt);
-  const StewartTrinkleLcp lcp = stewart_trinkle_lcp(s, delassus(s), kDt);
-  LcpModelAttempts cold;
-  run_lcp_model_attempts(s, lcp, LemkeSettings{}, {}, cold);
-  ASSERT_EQ(cold.source, LcpModelSource::regularized) << cold.message;
-  const std::vector<bool> warm = cold.used->result().z_basic;
+  const RegularizedWedge wedge;
+  ASSERT_TRUE(wedge.regularized()) << wedge.cold.message;
+  const auto& [s, lcp, cold, warm, z_cold] = wedge;
 
   LemkeSettings one_pivot;
   one_pivot.max_pivots = 1;

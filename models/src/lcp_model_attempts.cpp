@@ -154,11 +154,9 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   // instead, so that its symbolic analysis is reused while the basis pattern repeats.
   const bool regularized_rest = has_warm && warm_from_regularized && accept_perturbed;
   // 1. The warm basis on q where it is feasible (on the lifted form alone while M is not formed).
-  if (regularized_rest)
-    ;
-  else if (has_warm && lifted && !lcp.formed())
+  if (!regularized_rest && has_warm && lifted && !lcp.formed())
     r = &attempt_on(nullptr, lifted, warm_only, q, &warm, warm_factorization);
-  else if (has_warm)
+  else if (!regularized_rest && has_warm)
     r = &attempt(warm_only, q, &warm, warm_factorization);
   // 1b. A crash path on the perturbed q from the warm basis, at most
   //    kLcpWarmCrashPivotsPerUnknown pivots per unknown, polished on q. Its perturbed q is
