@@ -18,7 +18,8 @@
 // - without warm_from_regularized step 1c runs last (step 6), when everything else failed:
 //   with the caller's max_pivots = 1 every cold attempt stops at once (1b and 1c are capped
 //   by kLcpWarmCrashPivotsPerUnknown alone), and the answer is 1c's regularized one; without
-//   a warm basis the same settings fail;
+//   a warm basis the same settings fail, after one seed of step 2 (at its cap, which ends
+//   step 2), steps 3, 4 and 5;
 // - between exact retries (accept_perturbed) only step 1c's first path runs, in the caller's
 //   shared factorization (its symbolic analysis reused on the next call);
 // - the same z as the cold attempts' regularized answer (M + εI's solution), to 1e-7
@@ -126,6 +127,8 @@ TEST(LcpWarmRegularized, StepSixTurnsAFailureIntoTheRegularizedAnswer) {
   LcpModelAttempts failed;
   run_lcp_model_attempts(s, lcp, one_pivot, {}, failed);
   EXPECT_EQ(failed.status, ContactStatus::failed) << failed.message;
+  // Step 2's first seed stops at its cap, which ends step 2 (no second or third seed).
+  EXPECT_EQ(failed.solvers.size(), 4u) << "step 2 (one seed), steps 3, 4 and 5";
 
   LcpModelAttempts last;
   run_lcp_model_attempts(s, lcp, one_pivot, warm, last);

@@ -258,6 +258,9 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
        ++seed, delta *= 10.0) {
     const LemkeSolver& rp = attempt(cold, perturbed(delta, seed), nullptr);
     if (solved(&rp)) polish_on_q(rp, seed);
+    // A path that ran to its cap ends step 2: a larger δ breaks ties and turns rays, but does
+    // not shorten a long path (on 1,000-body drops the next seeds ran to the same cap).
+    else if (rp.result().info.status == LcpStatus::pivot_limit) break;
   }
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
