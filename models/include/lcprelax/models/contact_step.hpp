@@ -72,7 +72,7 @@
 //      after 100–900 pivots) and the second rescues about a third of those. Up to
 //      kLcpPerturbationSeeds patterns, δ ten times larger for each next one, until one
 //      runs to its cap (a larger δ breaks ties and turns rays; it does not shorten a long
-//      path: on a 1,000-body drop the three seeds ran to the same cap, 66 s each);
+//      path: on a 1,000-body drop the three seeds ran to the same cap, 38–66 s each);
 //   3. when no polish succeeded: Lemke on q from the all-w basis (skipped when the caller
 //      accepts an inexact answer and step 1b or 1c gave one: accept_perturbed), at most
 //      kLcpExactPivotsPerUnknown pivots per unknown; failing that, a perturbed solution is
