@@ -260,24 +260,29 @@ TEST(LemkeSparse, SmallRefactorIntervalGivesTheSameAnswer) {
 }
 
 // LemkeSettings::lu_pivot_tolerance (KLU's partial-pivoting threshold of the sparse basis)
-// changes how the basis is factorized, not the LCP: on P-matrix LCPs (unique solution)
-// KLU's default 0.001 and the range's ends give the same solution and pivot sequence, with
-// the refactorizations of refactor_interval 2. Values outside (0, 1] are refused.
-TEST(LemkeSparse, LuPivotToleranceKeepsTheAnswer) {
+// and lu_ordering (its column ordering) change how the basis is factorized, not the LCP: on
+// P-matrix LCPs (unique solution) KLU's default 0.001 and the range's ends, each with AMD
+// (the default) and COLAMD, give the same solution and pivot sequence, with the
+// refactorizations of refactor_interval 2 (the lifted bases of regularized pile LCPs:
+// lcp_lemke_lifted_basis_test.cpp). Tolerances outside (0, 1] are refused.
+TEST(LemkeSparse, LuPivotToleranceAndOrderingKeepTheAnswer) {
   std::mt19937 rng(78);
   const Index n = 120;
   const SparseMatrix M = random_p_matrix(rng, n, 1);
   const Vector q = random_vector(rng, n);
   const LcpResult reference = solve(M, q, with(LemkeMethod::dense));
-  for (double u : {1.0, 0.001, 1e-6}) {
-    SCOPED_TRACE("lu_pivot_tolerance " + std::to_string(u));
-    LemkeSettings s = with(LemkeMethod::sparse, 2);
-    s.lu_pivot_tolerance = u;
-    const LcpResult r = solve(M, q, s);
-    expect_lcp_solution(M, q, r);
-    EXPECT_EQ(r.z_basic, reference.z_basic);
-    EXPECT_EQ(r.info.pivots, reference.info.pivots);
-  }
+  EXPECT_EQ(LemkeSettings{}.lu_ordering, LuOrdering::amd);
+  for (LuOrdering o : {LuOrdering::amd, LuOrdering::colamd})
+    for (double u : {1.0, 0.001, 1e-6}) {
+      SCOPED_TRACE("lu_pivot_tolerance " + std::to_string(u) + ", lu_ordering " + to_string(o));
+      LemkeSettings s = with(LemkeMethod::sparse, 2);
+      s.lu_pivot_tolerance = u;
+      s.lu_ordering = o;
+      const LcpResult r = solve(M, q, s);
+      expect_lcp_solution(M, q, r);
+      EXPECT_EQ(r.z_basic, reference.z_basic);
+      EXPECT_EQ(r.info.pivots, reference.info.pivots);
+    }
   for (double bad : {0.0, -1.0, 1.5, std::nan("")}) {
     LemkeSettings s;
     s.lu_pivot_tolerance = bad;

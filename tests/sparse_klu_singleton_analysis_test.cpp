@@ -1,7 +1,7 @@
 // KluLu's analysis with the column singletons first (sparse/src/klu_singleton_analysis.hpp):
 // on Lemke-like bases (slack columns e_i beside columns of a sparse M) it peels every
-// singleton, and the factorization solves as a dense LU does, transposed too, refactorizes
-// with kept pivots, extracts factors whose dense solve repeats klu_solve bit for bit, and
+// singleton, and the factorization (either column ordering) solves as a dense LU does,
+// transposed too, refactorizes with kept pivots, extracts factors whose dense solve repeats klu_solve bit for bit, and
 // finds zero pivots; where it does not apply (no singleton, two on one row, a structurally
 // singular rest) KLU's own analysis runs and reports the matrix as before.
 #include "factorization_test_support.hpp"
@@ -62,7 +62,8 @@ SparseMatrix lemke_like_basis(int n, double slack, unsigned seed, Index& singlet
 }
 
 // Against KLU's own analysis of the whole matrix (set_singletons_first(false)) and a dense
-// LU, both with true partial pivoting (the Lemke basis' setting).
+// LU, both with true partial pivoting (the Lemke basis' setting), with either column
+// ordering of the rest (AMD, COLAMD).
 TEST(KluSingletonAnalysis, PeelsSlackColumnsAndSolvesAsKlusOwnAnalysis) {
   for (unsigned seed : {1u, 2u, 3u}) {
     for (double slack : {0.3, 0.6, 0.9}) {
@@ -70,33 +71,38 @@ TEST(KluSingletonAnalysis, PeelsSlackColumnsAndSolvesAsKlusOwnAnalysis) {
       Index singletons = 0;
       const SparseMatrix B = lemke_like_basis(300, slack, seed, singletons);
       ASSERT_GT(singletons, 0);
-      KluLu f, whole;
-      whole.set_singletons_first(false);
-      for (KluLu* g : {&f, &whole}) {
-        g->set_pivot_tolerance(1.0);
-        ASSERT_TRUE(g->analyze(B).ok());
-        ASSERT_TRUE(g->factorize(B).ok());
+      for (KluLu::Ordering ordering : {KluLu::Ordering::amd, KluLu::Ordering::colamd}) {
+        SCOPED_TRACE(ordering == KluLu::Ordering::amd ? "AMD" : "COLAMD");
+        KluLu f, whole;
+        whole.set_singletons_first(false);
+        for (KluLu* g : {&f, &whole}) {
+          g->set_pivot_tolerance(1.0);
+          g->set_ordering(ordering);
+          EXPECT_EQ(g->ordering(), ordering);
+          ASSERT_TRUE(g->analyze(B).ok());
+          ASSERT_TRUE(g->factorize(B).ok());
+        }
+        // At least the slack columns; a column of M may have a single entry too.
+        EXPECT_GE(f.leading_singletons(), singletons);
+        EXPECT_EQ(whole.leading_singletons(), 0);
+        const DenseMatrix D(B);
+        const DenseMatrix rhs = random_rhs(300, 3, seed);
+        const DenseMatrix expected = Eigen::PartialPivLU<DenseMatrix>(D).solve(rhs);
+        DenseMatrix X = rhs, Xw = rhs, Y = rhs, Yw = rhs;
+        ASSERT_TRUE(f.solve(X).ok());
+        ASSERT_TRUE(whole.solve(Xw).ok());
+        ASSERT_TRUE(f.solve_transposed(Y).ok());
+        ASSERT_TRUE(whole.solve_transposed(Yw).ok());
+        EXPECT_LT(relative_residual(D, X, rhs), 1e-15);
+        EXPECT_LT(relative_residual(D.transpose(), Y, rhs), 1e-15);
+        EXPECT_LT((X - expected).cwiseAbs().maxCoeff(), 1e-13 * expected.cwiseAbs().maxCoeff());
+        EXPECT_LT((X - Xw).cwiseAbs().maxCoeff(), 1e-13 * Xw.cwiseAbs().maxCoeff());
+        EXPECT_LT((Y - Yw).cwiseAbs().maxCoeff(), 1e-13 * Yw.cwiseAbs().maxCoeff());
+        Index l = 0, u = 0, off = 0, lw = 0, uw = 0, offw = 0;
+        f.factor_counts(l, u, off);
+        whole.factor_counts(lw, uw, offw);
+        EXPECT_EQ(off, offw);  // the same diagonal blocks, so the same off-diagonal entries
       }
-      // At least the slack columns; a column of M may have a single entry too.
-      EXPECT_GE(f.leading_singletons(), singletons);
-      EXPECT_EQ(whole.leading_singletons(), 0);
-      const DenseMatrix D(B);
-      const DenseMatrix rhs = random_rhs(300, 3, seed);
-      const DenseMatrix expected = Eigen::PartialPivLU<DenseMatrix>(D).solve(rhs);
-      DenseMatrix X = rhs, Xw = rhs, Y = rhs, Yw = rhs;
-      ASSERT_TRUE(f.solve(X).ok());
-      ASSERT_TRUE(whole.solve(Xw).ok());
-      ASSERT_TRUE(f.solve_transposed(Y).ok());
-      ASSERT_TRUE(whole.solve_transposed(Yw).ok());
-      EXPECT_LT(relative_residual(D, X, rhs), 1e-15);
-      EXPECT_LT(relative_residual(D.transpose(), Y, rhs), 1e-15);
-      EXPECT_LT((X - expected).cwiseAbs().maxCoeff(), 1e-13 * expected.cwiseAbs().maxCoeff());
-      EXPECT_LT((X - Xw).cwiseAbs().maxCoeff(), 1e-13 * Xw.cwiseAbs().maxCoeff());
-      EXPECT_LT((Y - Yw).cwiseAbs().maxCoeff(), 1e-13 * Yw.cwiseAbs().maxCoeff());
-      Index l = 0, u = 0, off = 0, lw = 0, uw = 0, offw = 0;
-      f.factor_counts(l, u, off);
-      whole.factor_counts(lw, uw, offw);
-      EXPECT_EQ(off, offw);  // the same diagonal blocks, so the same off-diagonal entries
     }
   }
 }

@@ -125,9 +125,11 @@ std::unique_ptr<LemkeBasis> make_dense_lemke_basis(const LemkeColumns& columns, 
 /// shared: the factorization to factorize in (its symbolic analysis reused while the
 /// pattern repeats; lemke.hpp LemkeSharedFactorization), or nullptr for one of its own.
 /// lu_pivot_tolerance: KLU's partial-pivoting threshold (LemkeSettings::lu_pivot_tolerance),
-/// set before every factorization (a shared factorization may have served other settings).
+/// set before every factorization (a shared factorization may have served other settings);
+/// colamd_ordering: KLU's column ordering for the analyses (LemkeSettings::lu_ordering),
+/// set before each analysis (an analysis reused while the pattern repeats keeps its own).
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
                                                     bool sparse_columns, LemkeSharedFactorization* shared,
-                                                    double lu_pivot_tolerance);
+                                                    double lu_pivot_tolerance, bool colamd_ordering);
 
 }  // namespace lcprelax::detail

@@ -59,9 +59,10 @@ using SchurBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 class SparseLemkeBasis final : public LemkeBasis {
  public:
   SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval, bool sparse_columns,
-                   LemkeSharedFactorization* shared, double lu_pivot_tolerance)
+                   LemkeSharedFactorization* shared, double lu_pivot_tolerance, bool colamd_ordering)
       : cols_(columns),
         lu_pivot_tolerance_(lu_pivot_tolerance),
+        ordering_(colamd_ordering ? sparse::KluLu::Ordering::colamd : sparse::KluLu::Ordering::amd),
         sparse_columns_(sparse_columns),
         max_updates_(std::min(refactor_interval, kCap)),
         shared_(shared),
@@ -125,6 +126,7 @@ class SparseLemkeBasis final : public LemkeBasis {
     // kReusedPivotsRcondRatio times the pivoted factorization's.
     const bool same_pattern = klu_.analyzed_for(B0_);
     if (!same_pattern) {
+      klu_.set_ordering(ordering_);
       if (!klu_.analyze(B0_).ok()) return false;
       if (shared_) ++shared_->analyses;
     }
@@ -371,6 +373,7 @@ class SparseLemkeBasis final : public LemkeBasis {
 
   LemkeColumns cols_;
   double lu_pivot_tolerance_;  // KLU's partial-pivoting threshold (LemkeSettings)
+  sparse::KluLu::Ordering ordering_;  // KLU's column ordering (LemkeSettings::lu_ordering)
   bool sparse_columns_;     // LemkeSettings::sparse_columns
   static constexpr double kHypersparseDensity = 0.1;  // solve_column's switch
   static constexpr double kReusedPivotsRcondRatio = 0.1;  // refactor's klu_refactor test
@@ -409,8 +412,9 @@ class SparseLemkeBasis final : public LemkeBasis {
 
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
                                                     bool sparse_columns, LemkeSharedFactorization* shared,
-                                                    double lu_pivot_tolerance) {
-  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns, shared, lu_pivot_tolerance);
+                                                    double lu_pivot_tolerance, bool colamd_ordering) {
+  return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns, shared, lu_pivot_tolerance,
+                                            colamd_ordering);
 }
 
 }  // namespace lcprelax::detail

@@ -27,6 +27,7 @@ const std::vector<SettingField<LemkeSettings>>& lemke_fields() {
       double_field("residual_tolerance", &S::residual_tolerance),
       int_field("refactor_interval", &S::refactor_interval),
       double_field("lu_pivot_tolerance", &S::lu_pivot_tolerance),
+      enum_field("lu_ordering", &S::lu_ordering, {LuOrdering::amd, LuOrdering::colamd}),
       bool_field("sparse_tie_rows", &S::sparse_tie_rows),
       bool_field("sparse_columns", &S::sparse_columns),
       bool_field("lifted_basis", &S::lifted_basis),

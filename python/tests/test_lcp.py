@@ -112,12 +112,17 @@ def test_warm_start_point_purifies_a_degenerate_solution():
 
 
 def test_lemke_settings():
-    solver = lcprelax.LemkeSolver(method="sparse", max_pivots=100, covering=np.ones(3))
-    assert solver.settings["method"] == "sparse" and solver.settings["max_pivots"] == 100
-    solver.setup(sp.csc_matrix(M), Q)
-    r = solver.solve()
-    assert r.method == "sparse"
-    check_complementary(M, Q, r)
+    assert lcprelax.LemkeSolver().settings["lu_ordering"] == "amd"
+    for ordering in ("colamd", "amd"):
+        solver = lcprelax.LemkeSolver(method="sparse", max_pivots=100, covering=np.ones(3), lu_ordering=ordering)
+        assert solver.settings["method"] == "sparse" and solver.settings["max_pivots"] == 100
+        assert solver.settings["lu_ordering"] == ordering
+        solver.setup(sp.csc_matrix(M), Q)
+        r = solver.solve()
+        assert r.method == "sparse"
+        check_complementary(M, Q, r)
+    with pytest.raises(lcprelax.InputError, match="lu_ordering"):
+        lcprelax.LemkeSolver(lu_ordering="metis")
     # The homotopy crash path: from the basis that solves q + u it reaches q's solution.
     u = np.array([0.5, 0.75, 1.0])
     perturbed = lcprelax.LemkeSolver()

@@ -1,4 +1,4 @@
-// KluLu: KLU sparse LU (BTF + AMD, partial pivoting) behind the Factorization interface.
+// KluLu: KLU sparse LU (BTF + AMD or COLAMD, partial pivoting) behind the Factorization interface.
 // The matrix is passed to KLU as its own CSC arrays (no copy); the pattern is saved at
 // analyze() and checked on every numeric (re)factorization.
 #include <lcprelax/sparse/klu_lu.hpp>
@@ -147,6 +147,14 @@ void KluLu::set_pivot_tolerance(double u) {
 }
 
 double KluLu::pivot_tolerance() const { return impl_ ? impl_->common.tol : 0.0; }
+
+void KluLu::set_ordering(Ordering ordering) {
+  if (impl_) impl_->common.ordering = ordering == Ordering::colamd ? 1 : 0;
+}
+
+KluLu::Ordering KluLu::ordering() const {
+  return impl_ && impl_->common.ordering == 1 ? Ordering::colamd : Ordering::amd;
+}
 
 bool KluLu::analyzed_for(const SparseMatrix& A) const {
   return impl_ && impl_->analysed && A.isCompressed() && impl_->pattern.matches(A);

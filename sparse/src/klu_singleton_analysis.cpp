@@ -46,7 +46,7 @@ klu_symbolic* new_symbolic(int n, klu_common* common) {
 klu_symbolic* analyze_singletons_first(int n, const int* Ap, const int* Ai, klu_common* common,
                                        SingletonAnalysisWork& w, int& peeled) {
   peeled = 0;
-  if (n <= 0 || !common->btf || common->ordering != 0) return nullptr;
+  if (n <= 0 || !common->btf || (common->ordering != 0 && common->ordering != 1)) return nullptr;
   const auto N = static_cast<std::size_t>(n);
   // Column singletons, each on a row of its own: their rows are marked −1 in reduced_row,
   // then the other rows are numbered in order (the row map is increasing, so sorted

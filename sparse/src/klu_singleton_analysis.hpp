@@ -38,7 +38,7 @@ struct SingletonAnalysisWork {
 /// `peeled` = 0, when A has no column singleton, when two singletons share a row (A is
 /// structurally singular), when a column's row indices are not increasing or lie outside
 /// [0, n), when the rest is structurally singular, when common asks for no BTF or an
-/// ordering other than AMD, or when KLU fails (out of memory): the caller then runs
+/// ordering other than AMD or COLAMD, or when KLU fails (out of memory): the caller then runs
 /// klu_analyze on A, which reports each of these cases as it does for any matrix.
 klu_symbolic* analyze_singletons_first(int n, const int* Ap, const int* Ai, klu_common* common,
                                        SingletonAnalysisWork& work, int& peeled);

@@ -60,6 +60,17 @@ class KluLu final : public Factorization {
   /// unless 0 < u ≤ 1.
   void set_pivot_tolerance(double u);
   double pivot_tolerance() const;
+  /// Fill-reducing column ordering of each diagonal block in analyze() (KLU's
+  /// Common.ordering). amd (KLU's default): AMD on the pattern of A + Aᵀ, which assumes
+  /// the pivots fall on the diagonal, as they do on circuit-like matrices with a strong
+  /// diagonal. colamd: COLAMD on A's columns (Davis, Gilbert, Larimore & Ng, "A column
+  /// approximate minimum degree ordering algorithm", ACM TOMS 30, 2004), whose ordering
+  /// bounds the fill of LU with any row interchanges, for matrices on which partial
+  /// pivoting leaves the diagonal. Applies to the next analyze(); an analysis already
+  /// held (analyzed_for) keeps the ordering it was made with.
+  enum class Ordering { amd, colamd };
+  void set_ordering(Ordering ordering);
+  Ordering ordering() const;
   /// The columns of A (analyze() first, same pattern) that a factorization which goes on
   /// past zero pivots (KLU's halt_if_singular off) leaves with a pivot |U_kk| ≤
   /// relative_tolerance·max|U_kk|: each depends on the columns before it in KLU's column
