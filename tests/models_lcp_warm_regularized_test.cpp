@@ -22,6 +22,8 @@
 //   step 2), steps 3, 4 and 5;
 // - between exact retries (accept_perturbed) only step 1c's first path runs, in the caller's
 //   shared factorization (its symbolic analysis reused on the next call);
+// - on an exact retry (accept_perturbed false) step 3 runs last and adds Lemke's
+//   covering-vector retries (the caller's covering_retries) to its failed cold path;
 // - the same z as the cold attempts' regularized answer (M + εI's solution), to 1e-7
 //   relative: z grows like |b|/ε, and M + εI's condition like 1/ε (ε = 1e-8 relative).
 #include <lcprelax/models/contact_step.hpp>
@@ -115,6 +117,36 @@ TEST(LcpWarmRegularized, AtRestOnlyStepOneCRunsInTheSharedFactorization) {
   run_lcp_model_attempts(s, lcp, sparse, warm, retry, false, lu, false, nullptr, true);
   EXPECT_GT(retry.solvers.size(), 1u);
   EXPECT_EQ(retry.solvers.front().result().info.crash_started, false) << "step 1: the warm basis alone";
+}
+
+// An exact retry of a regularized island (warm_from_regularized, accept_perturbed false):
+// step 3's exact cold path runs last (1c's regularized answer is in hand, so steps 1b, 2, 4
+// and 5 do not run), and where it fails (here on a ray: this LCP has no solution) Lemke's
+// covering-vector retries follow, as many as the caller's settings allow: more pivots in
+// step 3 with covering_retries = 2 than with 0, the same attempts and the same answer.
+TEST(LcpWarmRegularized, AnExactRetryAddsLemkesCoveringRetriesToStepThree) {
+  const RegularizedWedge wedge;
+  ASSERT_TRUE(wedge.regularized()) << wedge.cold.message;
+  const auto& [s, lcp, cold, warm, z_cold] = wedge;
+  long step3_pivots[2] = {0, 0};
+  std::size_t attempts[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    LemkeSettings settings;
+    settings.covering_retries = k ? 2 : 0;
+    LcpModelAttempts retry;
+    run_lcp_model_attempts(s, lcp, settings, warm, retry, false, {}, /*accept_perturbed=*/false, nullptr,
+                           /*warm_from_regularized=*/true);
+    ASSERT_EQ(retry.source, LcpModelSource::regularized) << retry.message;
+    EXPECT_LE((retry.used->result().z - z_cold).lpNorm<Eigen::Infinity>(), 1e-7 * z_cold.lpNorm<Eigen::Infinity>());
+    const LemkeSolver& step3 = retry.solvers.back();
+    EXPECT_NE(&step3, retry.used);
+    EXPECT_FALSE(step3.result().info.warm_started || step3.result().info.crash_started) << "a cold path";
+    EXPECT_FALSE(has_solution(step3.result().info.status));
+    step3_pivots[k] = step3.result().info.pivots;
+    attempts[k] = retry.solvers.size();
+  }
+  EXPECT_EQ(attempts[0], attempts[1]);
+  EXPECT_GT(step3_pivots[1], step3_pivots[0]) << "the covering-vector retries ran";
 }
 
 TEST(LcpWarmRegularized, StepSixTurnsAFailureIntoTheRegularizedAnswer) {

@@ -265,8 +265,13 @@ void run_lcp_model_attempts(const ContactSystem& s, StewartTrinkleLcpSource& lcp
   // 3. Exact from the all-w basis (degenerate piles often end it on a ray or a singular
   //    basis, or cycle: capped), else the perturbed solution. Not run at the caller's
   //    request when there is a perturbed solution (skip_exact_cold, accept_perturbed).
-  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && (inexact || regularized_fallback)))
-    r = &attempt(exact, q, nullptr);
+  //    On an exact retry of an island whose answer step 1c regularized, with the caller's
+  //    covering-vector retries (Lemke's own: each path capped alike).
+  if (!solved(r) && !((skip_exact_cold || accept_perturbed) && (inexact || regularized_fallback))) {
+    LemkeSettings exact_retry = exact;
+    if (regularized_fallback) exact_retry.covering_retries = settings.covering_retries;
+    r = &attempt(exact_retry, q, nullptr);
+  }
   if (!solved(r) && inexact) {
     r = inexact;
     out.source = LcpModelSource::perturbed;

@@ -75,9 +75,17 @@
 //      path: on a 1,000-body drop the three seeds ran to the same cap, 38–66 s each);
 //   3. when no polish succeeded: Lemke on q from the all-w basis (skipped when the caller
 //      accepts an inexact answer and step 1b or 1c gave one: accept_perturbed), at most
-//      kLcpExactPivotsPerUnknown pivots per unknown; failing that, a perturbed solution is
-//      kept (status solved_inaccurate): each contact may approach or slip at up to δ (m/s)
-//      unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes
+//      kLcpExactPivotsPerUnknown pivots per unknown. On an exact retry of an island whose
+//      answers are regularized (step 1c gave one: lcp_retry_exact's steps), Lemke's
+//      covering-vector retries follow a failed path (settings.covering_retries, each capped
+//      alike): on a settled 1,000-body pile the path with the all-ones covering vector ends
+//      on a singular basis after 1,000–2,400 pivots on every retry, while the second
+//      covering vector reaches the exact solution (63,643 pivots, 24 s, once); from then
+//      on the steps are exact and their Lemke solves take ~3 ms instead of the 15–70 ms of a
+//      regularized one (bench/results/lemke_exact_retry_covering.txt). Not on other steps:
+//      on a 500-body drop they cost 1.6× the time for the same 6 inexact answers.
+//      Failing that, a perturbed solution is kept (status solved_inaccurate): each contact
+//      may approach or slip at up to δ (m/s) unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes
 //      slip);
 //   4. when neither gave a solution: Lemke on M + εI, ε = kLcpRegularization·max(1, ‖M‖∞),
 //      from the all-w basis, at most kLcpRegularizedPivotsPerUnknown pivots per unknown,
