@@ -96,8 +96,9 @@ struct LemkeSettings {
   /// (analysis 4.2 against 2.8 ms), one reusing the pivots 3.4 against 10 ms; on the bases
   /// of M there about the same (99,000 and 97,000 entries, 1 ms). AMD stays the default: once that
   /// pile's answers are exact (models/contact_step.hpp step 3) both take the same time per
-  /// step, and with COLAMD one regularized path of 150 ended on a residual above tolerance
-  /// after its final refactorization (none with AMD). Ignored by the dense method.
+  /// step, and in a 150-step run from that pile with COLAMD, step 66's path on M + εI ended
+  /// on a residual above tolerance after its final refactorization (no such step in 150
+  /// with AMD). Ignored by the dense method.
   LuOrdering lu_ordering = LuOrdering::amd;
   /// Lexicographic tie-breaks on the rows of B⁻¹ formed with their nonzeros only (true:
   /// hypersparse transposed solves on the sparse basis, only the columns where a tied row
