@@ -85,8 +85,8 @@
 //      regularized one (bench/results/lemke_exact_retry_covering.txt). Not on other steps:
 //      on a 500-body drop they cost 1.6× the time for the same 6 inexact answers.
 //      Failing that, a perturbed solution is kept (status solved_inaccurate): each contact
-//      may approach or slip at up to δ (m/s) unresisted, and no energy is added (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes
-//      slip);
+//      may approach or slip at up to δ (m/s) unresisted, and no energy is added
+//      (λnᵀ Jn v⁺ = −δuᵀλn ≤ 0, friction still opposes slip);
 //   4. when neither gave a solution: Lemke on M + εI, ε = kLcpRegularization·max(1, ‖M‖∞),
 //      from the all-w basis, at most kLcpRegularizedPivotsPerUnknown pivots per unknown,
 //      then step 2's first polish (covering B·1) on (M, q) from its basis; failing that, the regularized
