@@ -65,8 +65,7 @@ void LemkeSolver::Impl::new_basis() {
   basis = method == LemkeMethod::dense
               ? detail::make_dense_lemke_basis(cols, settings.refactor_interval)
               : detail::make_sparse_lemke_basis(cols, settings.refactor_interval, settings.sparse_columns,
-                                                shared_lu.get(), settings.lu_pivot_tolerance,
-                                                settings.lu_ordering == LuOrdering::colamd);
+                                                shared_lu.get(), settings.lu_pivot_tolerance, settings.lu_ordering);
   factor_current = false;
 }
 

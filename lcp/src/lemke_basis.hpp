@@ -41,6 +41,7 @@
 // a refactorization; its output vectors allocate only below capacity n. solve_transposed
 // (used by backward() only) allocates a temporary, and so does inverse_rows on a lifted
 // basis (full tie rows, LemkeSettings::sparse_tie_rows = false: the reference path).
+#include <lcprelax/lcp/lcp_types.hpp>
 #include <lcprelax/sparse/types.hpp>
 
 #include <memory>
@@ -126,10 +127,10 @@ std::unique_ptr<LemkeBasis> make_dense_lemke_basis(const LemkeColumns& columns, 
 /// pattern repeats; lemke.hpp LemkeSharedFactorization), or nullptr for one of its own.
 /// lu_pivot_tolerance: KLU's partial-pivoting threshold (LemkeSettings::lu_pivot_tolerance),
 /// set before every factorization (a shared factorization may have served other settings);
-/// colamd_ordering: KLU's column ordering for the analyses (LemkeSettings::lu_ordering),
-/// set before each analysis (an analysis reused while the pattern repeats keeps its own).
+/// lu_ordering: KLU's column ordering for the analyses (LemkeSettings::lu_ordering), set
+/// before each analysis (an analysis reused while the pattern repeats keeps its own).
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
                                                     bool sparse_columns, LemkeSharedFactorization* shared,
-                                                    double lu_pivot_tolerance, bool colamd_ordering);
+                                                    double lu_pivot_tolerance, LuOrdering lu_ordering);
 
 }  // namespace lcprelax::detail

@@ -59,10 +59,10 @@ using SchurBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 class SparseLemkeBasis final : public LemkeBasis {
  public:
   SparseLemkeBasis(const LemkeColumns& columns, int refactor_interval, bool sparse_columns,
-                   LemkeSharedFactorization* shared, double lu_pivot_tolerance, bool colamd_ordering)
+                   LemkeSharedFactorization* shared, double lu_pivot_tolerance, LuOrdering lu_ordering)
       : cols_(columns),
         lu_pivot_tolerance_(lu_pivot_tolerance),
-        ordering_(colamd_ordering ? sparse::KluLu::Ordering::colamd : sparse::KluLu::Ordering::amd),
+        ordering_(lu_ordering == LuOrdering::colamd ? sparse::KluLu::Ordering::colamd : sparse::KluLu::Ordering::amd),
         sparse_columns_(sparse_columns),
         max_updates_(std::min(refactor_interval, kCap)),
         shared_(shared),
@@ -412,9 +412,9 @@ class SparseLemkeBasis final : public LemkeBasis {
 
 std::unique_ptr<LemkeBasis> make_sparse_lemke_basis(const LemkeColumns& columns, int refactor_interval,
                                                     bool sparse_columns, LemkeSharedFactorization* shared,
-                                                    double lu_pivot_tolerance, bool colamd_ordering) {
+                                                    double lu_pivot_tolerance, LuOrdering lu_ordering) {
   return std::make_unique<SparseLemkeBasis>(columns, refactor_interval, sparse_columns, shared, lu_pivot_tolerance,
-                                            colamd_ordering);
+                                            lu_ordering);
 }
 
 }  // namespace lcprelax::detail
