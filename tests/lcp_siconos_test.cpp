@@ -1,7 +1,9 @@
 // Lemke, dense and sparse, on the Siconos numerics test problems (tests/data/siconos,
 // copied from the project's shared data), with errors computed as Siconos defines them
 // (io/siconos_errors). The 667-contact granular fc2d problem is solved by the sparse path
-// only: the dense one needs minutes on it (2,668 unknowns, O(n²) per pivot).
+// only: the dense one needs minutes on it (2,668 unknowns, O(n²) per pivot). The sparse path
+// runs with both of KLU's column orderings (LemkeSettings::lu_ordering: AMD, the default, and
+// COLAMD), which must give the same statuses and accuracies.
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
 #include <lcprelax/lcp/fc2d_lcp.hpp>
@@ -10,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <ostream>
 #include <string>
 #include <tuple>
 
@@ -18,28 +21,38 @@ namespace {
 
 const std::string kDir = std::string(LCPRELAX_TEST_DATA_DIR) + "/siconos/";
 
-LemkeSettings with_method(LemkeMethod method) {
+// The Lemke variants run on every file: dense, sparse (KLU with AMD), sparse with COLAMD.
+enum class Path { dense, sparse, sparse_colamd };
+
+const char* to_string(Path p) {
+  return p == Path::dense ? "dense" : p == Path::sparse ? "sparse" : "sparse_colamd";
+}
+void PrintTo(Path p, std::ostream* os) { *os << to_string(p); }
+
+LemkeSettings with_path(Path path) {
   LemkeSettings s;
-  s.method = method;
+  s.method = path == Path::dense ? LemkeMethod::dense : LemkeMethod::sparse;
+  s.lu_ordering = path == Path::sparse_colamd ? LuOrdering::colamd : LuOrdering::amd;
   return s;
 }
 
-using NameAndMethod = std::tuple<std::string, LemkeMethod>;
-std::string name_and_method(const ::testing::TestParamInfo<NameAndMethod>& info) {
+using NameAndPath = std::tuple<std::string, Path>;
+std::string name_and_path(const ::testing::TestParamInfo<NameAndPath>& info) {
   return std::get<0>(info.param) + "_" + to_string(std::get<1>(info.param));
 }
 
-class SiconosLcp : public ::testing::TestWithParam<NameAndMethod> {};
+class SiconosLcp : public ::testing::TestWithParam<NameAndPath> {};
 
 TEST_P(SiconosLcp, SolvedToSiconosErrorOrRightStatus) {
-  const auto& [name, method] = GetParam();
+  const auto& [name, path] = GetParam();
   const io::LcpData d = io::read_siconos_lcp(kDir + "lcp/" + name + ".dat");
-  LemkeSolver solver(with_method(method));
+  const LemkeSettings settings = with_path(path);
+  LemkeSolver solver(settings);
   solver.setup(d.M, d.q);
   const LcpResult& r = solver.solve();
-  std::printf("%s (%s): n = %ld, %s, %ld pivots\n", name.c_str(), to_string(r.info.method),
+  std::printf("%s (%s): n = %ld, %s, %ld pivots\n", name.c_str(), to_string(path),
               static_cast<long>(d.q.size()), to_string(r.info.status), r.info.pivots);
-  EXPECT_EQ(r.info.method, method);
+  EXPECT_EQ(r.info.method, settings.method);
   if (name == "lcp_CPS_3") {
     // Bimatrix game (Cottle, Pang & Stone, example 4.4.23): M ≥ 0 with zero diagonal
     // blocks is copositive but not copositive-plus, so Lemke's method with the standard
@@ -51,27 +64,28 @@ TEST_P(SiconosLcp, SolvedToSiconosErrorOrRightStatus) {
   EXPECT_LE(io::lcp_error(d.M, d.q, r.z), 1e-10);
 }
 
-const auto kMethods = ::testing::Values(LemkeMethod::dense, LemkeMethod::sparse);
+const auto kPaths = ::testing::Values(Path::dense, Path::sparse, Path::sparse_colamd);
 
 INSTANTIATE_TEST_SUITE_P(All, SiconosLcp,
                          ::testing::Combine(::testing::Values("lcp_CPS_1", "lcp_CPS_2", "lcp_CPS_3", "lcp_CPS_4",
                                                               "lcp_CPS_5", "lcp_deudeu", "lcp_deudeu_block",
                                                               "lcp_exp_murty", "lcp_mmc", "lcp_ortiz",
                                                               "lcp_tobenna", "lcp_trivial"),
-                                            kMethods),
-                         name_and_method);
+                                            kPaths),
+                         name_and_path);
 
-class SiconosFc2d : public ::testing::TestWithParam<NameAndMethod> {};
+class SiconosFc2d : public ::testing::TestWithParam<NameAndPath> {};
 
 TEST_P(SiconosFc2d, SolvedAsAnLcpToSiconosError) {
-  const auto& [name, method] = GetParam();
+  const auto& [name, path] = GetParam();
   const io::Fc2dData d = io::read_siconos_fc2d(kDir + "fc2d/" + name + ".dat");
   const Fc2dLcp lcp = fc2d_to_lcp(d.W, d.q, d.mu);
-  LemkeSolver solver(with_method(method));
+  const LemkeSettings settings = with_path(path);
+  LemkeSolver solver(settings);
   solver.setup(lcp.M, lcp.q);
   const LcpResult& r = solver.solve();
   std::printf("%s (%s): %ld contacts, %s, %ld pivots, %ld refactorizations, %.3f s\n", name.c_str(),
-              to_string(r.info.method), static_cast<long>(d.contacts), to_string(r.info.status), r.info.pivots,
+              to_string(path), static_cast<long>(d.contacts), to_string(r.info.status), r.info.pivots,
               r.info.refactorizations, r.info.seconds);
   ASSERT_EQ(r.info.status, LcpStatus::solved) << r.info.message;
   Vector reactions, velocities;
@@ -99,12 +113,12 @@ INSTANTIATE_TEST_SUITE_P(All, SiconosFc2d,
                                                               "FrictionContactProblem00031",
                                                               "FrictionContactProblem00071",
                                                               "FrictionContactProblem00374"),
-                                            kMethods),
-                         name_and_method);
+                                            kPaths),
+                         name_and_path);
 INSTANTIATE_TEST_SUITE_P(Granular, SiconosFc2d,
                          ::testing::Combine(::testing::Values("fc2d_granularflowonwall_00667_00000"),
-                                            ::testing::Values(LemkeMethod::sparse)),
-                         name_and_method);
+                                            ::testing::Values(Path::sparse, Path::sparse_colamd)),
+                         name_and_path);
 
 // The LCP formulation of fc2d: a 1-contact problem whose LCP is the seeds' block LCP up to
 // the normal row: W = I, q = (−1, v), μ = 0.5 → r_n = 1, friction −sign(v)·min(|v|, 0.5).
