@@ -2,8 +2,8 @@
 // copied from the project's shared data), with errors computed as Siconos defines them
 // (io/siconos_errors). The 667-contact granular fc2d problem is solved by the sparse path
 // only: the dense one needs minutes on it (2,668 unknowns, O(n²) per pivot). The sparse path
-// runs with both of KLU's column orderings (LemkeSettings::lu_ordering: AMD, the default, and
-// COLAMD), which must give the same statuses and accuracies.
+// runs with both of KLU's column orderings (LemkeSettings::lu_ordering: COLAMD, the default,
+// and AMD), which must give the same statuses and accuracies.
 #include <lcprelax/io/siconos_errors.hpp>
 #include <lcprelax/io/siconos_reader.hpp>
 #include <lcprelax/lcp/fc2d_lcp.hpp>
@@ -21,18 +21,18 @@ namespace {
 
 const std::string kDir = std::string(LCPRELAX_TEST_DATA_DIR) + "/siconos/";
 
-// The Lemke variants run on every file: dense, sparse (KLU with AMD), sparse with COLAMD.
-enum class Path { dense, sparse, sparse_colamd };
+// The Lemke variants run on every file: dense, sparse (KLU with COLAMD), sparse with AMD.
+enum class Path { dense, sparse, sparse_amd };
 
 const char* to_string(Path p) {
-  return p == Path::dense ? "dense" : p == Path::sparse ? "sparse" : "sparse_colamd";
+  return p == Path::dense ? "dense" : p == Path::sparse ? "sparse" : "sparse_amd";
 }
 void PrintTo(Path p, std::ostream* os) { *os << to_string(p); }
 
 LemkeSettings with_path(Path path) {
   LemkeSettings s;
   s.method = path == Path::dense ? LemkeMethod::dense : LemkeMethod::sparse;
-  s.lu_ordering = path == Path::sparse_colamd ? LuOrdering::colamd : LuOrdering::amd;
+  s.lu_ordering = path == Path::sparse_amd ? LuOrdering::amd : LuOrdering::colamd;
   return s;
 }
 
@@ -64,7 +64,7 @@ TEST_P(SiconosLcp, SolvedToSiconosErrorOrRightStatus) {
   EXPECT_LE(io::lcp_error(d.M, d.q, r.z), 1e-10);
 }
 
-const auto kPaths = ::testing::Values(Path::dense, Path::sparse, Path::sparse_colamd);
+const auto kPaths = ::testing::Values(Path::dense, Path::sparse, Path::sparse_amd);
 
 INSTANTIATE_TEST_SUITE_P(All, SiconosLcp,
                          ::testing::Combine(::testing::Values("lcp_CPS_1", "lcp_CPS_2", "lcp_CPS_3", "lcp_CPS_4",
@@ -117,7 +117,7 @@ INSTANTIATE_TEST_SUITE_P(All, SiconosFc2d,
                          name_and_path);
 INSTANTIATE_TEST_SUITE_P(Granular, SiconosFc2d,
                          ::testing::Combine(::testing::Values("fc2d_granularflowonwall_00667_00000"),
-                                            ::testing::Values(Path::sparse, Path::sparse_colamd)),
+                                            ::testing::Values(Path::sparse, Path::sparse_amd)),
                          name_and_path);
 
 // The LCP formulation of fc2d: a 1-contact problem whose LCP is the seeds' block LCP up to

@@ -112,7 +112,7 @@ def test_warm_start_point_purifies_a_degenerate_solution():
 
 
 def test_lemke_settings():
-    assert lcprelax.LemkeSolver().settings["lu_ordering"] == "amd"
+    assert lcprelax.LemkeSolver().settings["lu_ordering"] == "colamd"
     for ordering in ("colamd", "amd"):
         solver = lcprelax.LemkeSolver(method="sparse", max_pivots=100, covering=np.ones(3), lu_ordering=ordering)
         assert solver.settings["method"] == "sparse" and solver.settings["max_pivots"] == 100

@@ -87,19 +87,22 @@ struct LemkeSettings {
   /// pivots fully (ignored there).
   double lu_pivot_tolerance = 1.0;
   /// Fill-reducing column ordering of the sparse method's LU of the basis
-  /// (sparse::KluLu::set_ordering). amd: KLU's default, AMD on B + Bᵀ, which assumes
-  /// diagonal pivots; colamd: COLAMD on the basis' columns, whose ordering bounds the fill
-  /// under any row interchanges, as the true partial pivoting above makes them. Measured on
-  /// the lifted bases of a settled 1,000-body pile solved on M + εI (the LCP model's
-  /// regularized answers, bench/results/lemke_lu_ordering.txt): COLAMD's L + U about
+  /// (sparse::KluLu::set_ordering). colamd (default): COLAMD on the basis' columns, which
+  /// orders for the Cholesky factor of BᵀB, a bound on L and U under any row interchanges
+  /// (George & Ng 1987; Davis, Gilbert, Larimore & Ng 2004), as the true partial pivoting
+  /// above makes them; amd: KLU's own default, AMD on B + Bᵀ, which assumes diagonal pivots.
+  /// Measured on the lifted bases of a settled 1,000-body pile solved on M + εI (the LCP
+  /// model's regularized answers, bench/results/lemke_lu_ordering.txt): COLAMD's L + U about
   /// 307,000 entries against AMD's 588,000, a fresh factorization 7.5 ms against 19 ms
   /// (analysis 4.2 against 2.8 ms), one reusing the pivots 3.4 against 10 ms; on the bases
-  /// of M there about the same (99,000 and 97,000 entries, 1 ms). AMD stays the default: once that
-  /// pile's answers are exact (models/contact_step.hpp step 3) both take the same time per
-  /// step, and in a 150-step run from that pile with COLAMD, step 66's path on M + εI ended
-  /// on a residual above tolerance after its final refactorization (no such step in 150
-  /// with AMD). Ignored by the dense method.
-  LuOrdering lu_ordering = LuOrdering::amd;
+  /// of M there about the same (99,000 and 97,000 entries, 1 ms). On the six 500-body LCP
+  /// pile windows (bench/results/pile_scaling_lcp_windows.txt) COLAMD took less time per
+  /// step on five (seed 3: 1.9 s against 6.5 s, whose regularized paths on M + εI had cost
+  /// 0.47–0.73 ms per pivot with AMD), 10% more on seed 4, 0.87–1.07× the CPU time per
+  /// pivot on all but seed 3; failed islands 0 and the same inexact ones or fewer. A 500-body
+  /// drop (120 steps) took 0.74 against 0.72 s per step, with the same 6 inexact answers.
+  /// Ignored by the dense method.
+  LuOrdering lu_ordering = LuOrdering::colamd;
   /// Lexicographic tie-breaks on the rows of B⁻¹ formed with their nonzeros only (true:
   /// hypersparse transposed solves on the sparse basis, only the columns where a tied row
   /// is nonzero visited) or as full rows (false: the reference, one dense transposed solve
