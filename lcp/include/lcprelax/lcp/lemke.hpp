@@ -73,7 +73,7 @@ namespace lcprelax {
 
 /// A sparse LU factorization that LemkeSolvers hand on from one solve to the next, one
 /// solver at a time (LemkeSolver::share_factorization): when a basis to factorize has the
-/// pattern of the one factorized before in it, KLU's symbolic analysis (BTF and AMD
+/// pattern of the one factorized before in it, KLU's symbolic analysis (BTF and COLAMD
 /// orderings, which depend on the pattern only) is reused, and so is the pivot order of
 /// the numeric factorization held (klu_refactor, no pivot search), unless the result's
 /// condition estimate falls below 0.1 times that of the factorization that chose the

@@ -1,10 +1,10 @@
 #pragma once
-// KLU sparse LU (with BTF and AMD ordering, partial pivoting) for square unsymmetric
+// KLU sparse LU (with BTF and AMD or COLAMD ordering, partial pivoting) for square unsymmetric
 // matrices; used by the Lemke basis. factorize() does a full numeric factorization with
 // pivoting; refactorize() reuses the last pivot sequence (klu_refactor, cheaper, but may
 // be unstable when values change much: check rcond()). analyze() puts the column
 // singletons (columns with one entry, each on a row of its own) first as 1×1 blocks and
-// runs KLU's analysis (BTF, AMD) on the other rows and columns only: the same diagonal
+// runs KLU's analysis (BTF, AMD/COLAMD) on the other rows and columns only: the same diagonal
 // blocks as KLU's analysis of the whole matrix, at the cost of the rest (a Lemke basis is
 // mostly slack columns e_i); KLU's own analysis of the whole matrix when there are none.
 #include <lcprelax/sparse/factorization.hpp>
@@ -31,7 +31,7 @@ class KluLu final : public Factorization {
   void set_singletons_first(bool on);
   bool singletons_first() const;
   /// Whether the last analyze() was of A's pattern (A compressed), so that factorize(A)
-  /// can reuse its symbolic analysis (BTF and AMD orderings depend on the pattern only).
+  /// can reuse its symbolic analysis (BTF and AMD/COLAMD orderings depend on the pattern only).
   bool analyzed_for(const SparseMatrix& A) const;
   FactorResult factorize(const SparseMatrix& A) override;
   /// Numeric refactorization keeping the previous pivot order (requires factorize() first).
