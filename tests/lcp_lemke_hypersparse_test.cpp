@@ -224,8 +224,8 @@ TEST(LemkeSparseColumns, SamePivotSequenceAsDenseSolvesOnGranularFc2d) {
 // A pile of polygons (tests/data/generated, 186 contacts): the degenerate family. With AMD:
 // with COLAMD (the default) the two column solves' plain paths part by roundoff (measured:
 // the dense one ends on a ray at pivot 726, the hypersparse one on a singular basis at 603),
-// as they do on the redundant contacts below with either ordering; the ordering decides
-// where a degenerate path goes, and where the two solves' roundoff starts to matter.
+// as they do on the redundant contacts below; the ordering decides where a degenerate path
+// goes, and where the two solves' roundoff starts to matter.
 TEST(LemkeSparseColumns, SamePivotSequenceAsDenseSolvesOnPolygonPile) {
   const io::Fc2dData d =
       io::read_siconos_fc2d(std::string(LCPRELAX_TEST_DATA_DIR) + "/generated/fc2d_pile_00186_b60_s150.dat");
