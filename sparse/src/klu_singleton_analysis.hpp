@@ -7,7 +7,7 @@
 // singleton, each on its own row, leaves the square submatrix K of the other rows and
 // columns, and
 //     A(P, Q) = [ D  F ]     D diagonal (the singletons' entries), F their rows' other
-//               [ 0  K ]     entries, K in KLU's own block triangular form (BTF + AMD),
+//               [ 0  K ]     entries, K in KLU's own block triangular form (BTF + AMD/COLAMD),
 // is a block triangular form of A with K's blocks and the singletons as its diagonal
 // blocks: the same strongly connected components that KLU's BTF of the whole of A would
 // find (Duff & Reid, "An implementation of Tarjan's algorithm for the block
