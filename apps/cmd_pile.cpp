@@ -327,8 +327,9 @@ Command add_pile_command(CLI::App& parent) {
   app->add_option("--export-fc2d", o->export_fc2d,
                   "write the last step's contact problem as a Siconos 2-D frictional contact file");
   app->add_option("--save-scene", o->save_scene,
-                  "write the final state as a scene JSON file (docs/formats.md) that --scene continues from; it "
-                  "holds no previous-step Lemke bases, so the lcp model's first step from it is a cold solve");
+                  "write the final state as a scene JSON file (docs/formats.md) that --scene continues from, with the "
+                  "simulator's warm-start state (the lcp model's last bases per contact), so that a continued lcp run "
+                  "starts from them; a state that the convex model wrote has none");
   add_json_flag(*app, o->json);
   app->footer(exit_codes_help("every step's contact problems were solved",
                               "some island's contact solve failed (it was then solved by the other model or "
